@@ -1,0 +1,1 @@
+//! Independent std, f64 reference implementation (filled in by the reference work).

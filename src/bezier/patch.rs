@@ -1,0 +1,95 @@
+//! `TensorPatch`: a `K×K` Bézier patch (degree `K−1` in each direction) and its
+//! evaluation by de Casteljau's algorithm: position, both first partials and the
+//! unit normal. Index `[i][j]`: `i` runs along `u` (for polar rings: radially
+//! outward), `j` along `v` (counter-clockwise), so `∂u × ∂v` is the normal.
+
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+
+/// A tensor-product Bézier patch with `K×K` control points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TensorPatch<R, const K: usize> {
+    /// Control points, `points[i][j]`, `i` along `u`, `j` along `v`.
+    pub points: [[Point3<R>; K]; K],
+}
+
+/// A bicubic patch (C²PS rings).
+pub type BicubicPatch<R> = TensorPatch<R, 4>;
+/// A bi-quartic patch (EG rings).
+pub type BiquarticPatch<R> = TensorPatch<R, 5>;
+
+/// Position and first partial derivatives at one parameter pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PatchPoint<R> {
+    /// `x(u, v)`.
+    pub position: Point3<R>,
+    /// `∂x/∂u`.
+    pub du: Point3<R>,
+    /// `∂x/∂v`.
+    pub dv: Point3<R>,
+}
+
+impl<R: Real> PatchPoint<R> {
+    /// Unit normal `∂u × ∂v / |∂u × ∂v|`; [`Error::Degenerate`] where it vanishes.
+    pub fn normal(&self) -> Result<Point3<R>, Error> {
+        let n = self.du.cross(self.dv);
+        let len = n.norm();
+        if len > R::ZERO && len.is_finite() {
+            Ok(n * (R::ONE / len))
+        } else {
+            Err(Error::Degenerate)
+        }
+    }
+}
+
+/// de Casteljau on `K` points at `t`: value and derivative.
+fn casteljau<R: Real, const K: usize>(pts: &[Point3<R>; K], t: R) -> (Point3<R>, Point3<R>) {
+    let mut b = *pts;
+    let s = R::ONE - t;
+    // Reduce to two points, then value and derivative from them.
+    let mut len = K;
+    while len > 2 {
+        for i in 0..len - 1 {
+            b[i] = b[i] * s + b[i + 1] * t;
+        }
+        len -= 1;
+    }
+    if K == 1 {
+        return (b[0], Point3::ZERO);
+    }
+    let deg = R::from_f64((K - 1) as f64);
+    (b[0] * s + b[1] * t, (b[1] - b[0]) * deg)
+}
+
+impl<R: Real, const K: usize> TensorPatch<R, K> {
+    /// Position and partials at `(u, v) ∈ [0,1]²`; [`Error::OutOfDomain`] otherwise.
+    pub fn evaluate(&self, u: R, v: R) -> Result<PatchPoint<R>, Error> {
+        let inside = |t: R| t.is_finite() && t >= R::ZERO && t <= R::ONE;
+        if !inside(u) || !inside(v) {
+            return Err(Error::OutOfDomain);
+        }
+        let mut rows = [Point3::ZERO; K];
+        let mut rows_dv = [Point3::ZERO; K];
+        for i in 0..K {
+            let (p, d) = casteljau(&self.points[i], v);
+            rows[i] = p;
+            rows_dv[i] = d;
+        }
+        let (position, du) = casteljau(&rows, u);
+        let (dv, _) = casteljau(&rows_dv, u);
+        Ok(PatchPoint { position, du, dv })
+    }
+
+    /// Position at `(u, v)`.
+    pub fn position(&self, u: R, v: R) -> Result<Point3<R>, Error> {
+        Ok(self.evaluate(u, v)?.position)
+    }
+
+    /// Unit normal at `(u, v)`.
+    pub fn normal(&self, u: R, v: R) -> Result<Point3<R>, Error> {
+        self.evaluate(u, v)?.normal()
+    }
+}

@@ -1,0 +1,28 @@
+//! # capdiv
+//!
+//! A `no_std`, allocation-free kernel for smooth subdivision-surface caps:
+//!
+//! - [`polar`]: C²PS, bi-3 C² polar subdivision (spec `C2PS.md`) — caps around
+//!   polar vertices; the valence doubles every step.
+//! - `eg`: Evolving Guide subdivision (spec `EG.md`) — bi-4 caps around
+//!   extraordinary Catmull-Clark nodes.
+//!
+//! Everything is generic over [`Real`] (`f32`, `f64`), stored in fixed capacity
+//! (const generics, `heapless`), and reports bad input as an [`Error`] without
+//! panicking or touching the caller's data.
+#![no_std]
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod bezier;
+pub mod error;
+pub mod point;
+pub mod polar;
+pub mod real;
+pub mod trig;
+
+pub use bezier::{BicubicPatch, BiquarticPatch, PatchPoint, TensorPatch};
+pub use error::Error;
+pub use point::Point3;
+pub use polar::{FirstStep, OuterRegion, PolarNet, PoleGeometry, PoleJet};
+pub use real::Real;

@@ -1,0 +1,89 @@
+//! `PoleJet`: the eigencoefficients `p0..p5` at the pole and what follows from
+//! them (spec C2PS.md §4): limit point, unit normal, curvatures.
+//!
+//! Normalisation (the paper's Table 1, not its mistyped eq. (27)):
+//! `p0 = 2/3 q00 + 1/3 A`, `p1 = 2 C1`, `p2 = 2 S1`, `p3 = A − q00`,
+//! `p4 = 3 C2`, `p5 = 3 S2`, from the configuration's own valence. Near the pole
+//! the limit surface is `p0 + p1 x + p2 y + p3 (x²+y²) + p4 (x²−y²) + p5 (2xy)`.
+
+use super::fourier::Fourier;
+use super::net::PolarNet;
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+
+/// The six eigencoefficients of a polar configuration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PoleJet<R> {
+    /// `p0..p5`.
+    pub p: [Point3<R>; 6],
+}
+
+/// Differential geometry of the limit surface at the pole.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PoleGeometry<R> {
+    /// Unit normal `p1×p2/|p1×p2|`.
+    pub normal: Point3<R>,
+    /// Gaussian curvature `K = (eg − f²)/(EG − F²)`.
+    pub gaussian: R,
+    /// Mean curvature `H = (Eg − 2Ff + Ge)/(2(EG − F²))`.
+    pub mean: R,
+    /// Principal curvatures `H + √(H²−K)`, `H − √(H²−K)`.
+    pub principal: [R; 2],
+}
+
+impl<R: Real> PoleJet<R> {
+    /// The jet of a net at its current level.
+    pub fn of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Self {
+        let link1 = net.link(1).unwrap_or(&[]);
+        let f = Fourier::of(link1, net.roots().as_slice(), 1);
+        let q00 = net.pole();
+        let two = R::from_f64(2.0);
+        let three = R::from_f64(3.0);
+        PoleJet {
+            p: [
+                q00 * R::ratio(2, 3) + f.a * R::ratio(1, 3),
+                f.c1 * two,
+                f.s1 * two,
+                f.a - q00,
+                f.c2 * three,
+                f.s2 * three,
+            ],
+        }
+    }
+
+    /// The limit point at the pole, `p0`.
+    #[inline]
+    pub fn limit(&self) -> Point3<R> {
+        self.p[0]
+    }
+
+    /// Normal and curvatures; [`Error::Degenerate`] when `p1 × p2` vanishes.
+    pub fn geometry(&self) -> Result<PoleGeometry<R>, Error> {
+        let [_, p1, p2, p3, p4, p5] = self.p;
+        let cross = p1.cross(p2);
+        let len = cross.norm();
+        let (e1, f1, g1) = (p1.dot(p1), p1.dot(p2), p2.dot(p2));
+        let det = e1 * g1 - f1 * f1;
+        if !(len > R::ZERO) || !(det > R::ZERO) || !len.is_finite() {
+            return Err(Error::Degenerate);
+        }
+        let normal = cross * (R::ONE / len);
+        let two = R::from_f64(2.0);
+        let e2 = normal.dot((p3 + p4) * two);
+        let g2 = normal.dot((p3 - p4) * two);
+        let f2 = normal.dot(p5 * two);
+        let gaussian = (e2 * g2 - f2 * f2) / det;
+        let mean = (e1 * g2 - two * f1 * f2 + g1 * e2) / (two * det);
+        let disc = mean * mean - gaussian;
+        let root = if disc > R::ZERO { disc.sqrt() } else { R::ZERO };
+        Ok(PoleGeometry {
+            normal,
+            gaussian,
+            mean,
+            principal: [mean + root, mean - root],
+        })
+    }
+}

@@ -1,0 +1,80 @@
+//! The level-0 outer region (spec C2PS.md §5): with `L > 6` links the level-0
+//! configuration directly defines the regular bicubic surface between the
+//! level-0 ring and the last links, `r ∈ [4, L−2]`, without refinement.
+//!
+//! Span `k` (`r ∈ [k, k+1]`, `k = 4..L−3`) uses links `k−1..k+2`; each span has
+//! `n` periodic patches. Together with the rings of levels 0, 1, … it covers
+//! everything but the shrinking hole around the pole.
+
+use super::net::validate;
+use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+
+/// The outer region of a level-0 configuration, borrowed from the caller.
+#[derive(Clone, Copy, Debug)]
+pub struct OuterRegion<'a, R, L> {
+    links: &'a [L],
+    valence: usize,
+    _r: core::marker::PhantomData<R>,
+}
+
+impl<'a, R: Real, L: AsRef<[[R; 3]]>> OuterRegion<'a, R, L> {
+    /// Validates the configuration like [`crate::polar::PolarNet::new`]
+    /// (same errors, same order). With `L ≤ 6` links the region is empty.
+    pub fn new(pole: [R; 3], links: &'a [L]) -> Result<Self, Error> {
+        let valence = validate(&pole, links)?;
+        Ok(OuterRegion {
+            links,
+            valence,
+            _r: core::marker::PhantomData,
+        })
+    }
+
+    /// Radial spans: `max(L − 6, 0)`.
+    #[inline]
+    pub fn spans(&self) -> usize {
+        self.links.len().saturating_sub(6)
+    }
+
+    /// Number of patches, `spans · n`.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.spans() * self.valence
+    }
+
+    /// `true` when the configuration has at most 6 links.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Patch `i` (`span = i / n`, `column = i % n`): span `s` covers
+    /// `r ∈ [4+s, 5+s]`. [`Error::OutOfDomain`] for `i ≥ len()`.
+    pub fn patch(&self, i: usize) -> Result<BicubicPatch<R>, Error> {
+        if i >= self.len() {
+            return Err(Error::OutOfDomain);
+        }
+        let n = self.valence;
+        let (span, column) = (i / n, i % n);
+        // r in [k, k+1] with k = 4 + span uses links k-1..k+2 (1-based),
+        // i.e. slice indices k-2..k+1.
+        let first = span + 2;
+        let mut d = [[Point3::ZERO; 4]; 4];
+        for (k, row) in d.iter_mut().enumerate() {
+            let link = self.links[first + k].as_ref();
+            for (l, p) in row.iter_mut().enumerate() {
+                *p = Point3(link[(column + n + l - 1) % n]);
+            }
+        }
+        Ok(BicubicPatch {
+            points: bspline_to_bezier_cubic(&d),
+        })
+    }
+
+    /// All patches, span by span.
+    pub fn patches(&self) -> impl Iterator<Item = BicubicPatch<R>> + '_ {
+        (0..self.len()).filter_map(|i| self.patch(i).ok())
+    }
+}

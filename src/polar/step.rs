@@ -1,0 +1,141 @@
+//! One C²PS step, level m → m+1, valence n → 2n (spec C2PS.md §2), in place.
+//!
+//! O(n): the Fourier sums of the old 1-link are taken once, then every new
+//! point is a fixed combination of them and of the periodic refinements of old
+//! links 1..3. The new links are written over the old ones in one backward sweep
+//! `j = n−1 … 0` that reads old entries `j−1, j, j+1` and writes new entries
+//! `2j, 2j+1`: an entry is never overwritten before its last read (only the
+//! wrap-around entry `n−1`, read again at `j = 0`, is saved beforehand). No
+//! second copy of the net; stack use is a fixed number of points.
+
+use super::fourier::Fourier;
+use super::net::{FirstStep, PolarNet};
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+use heapless::VecView;
+
+impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
+    /// One C²PS step. `first` selects the first-step variant; it only matters
+    /// on the net's first step (level 0), later steps always use rules (1)–(3).
+    ///
+    /// [`Error::CapacityExceeded`] when `2N > CAP`; the net is then unchanged.
+    pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
+        let n = self.valence();
+        if 2 * n > CAP {
+            return Err(Error::CapacityExceeded {
+                needed: 2 * n,
+                capacity: CAP,
+            });
+        }
+        self.roots.double()?;
+        let uniform_first = self.level == 0 && first == FirstStep::Uniform;
+        let new_held = self.held_after_step();
+        let [l1, l2, l3, l4, l5] = &mut self.links;
+        let links = [
+            l1.as_mut_view(),
+            l2.as_mut_view(),
+            l3.as_mut_view(),
+            l4.as_mut_view(),
+            l5.as_mut_view(),
+        ];
+        c2ps_in_place(
+            &mut self.pole,
+            links,
+            self.held,
+            new_held,
+            self.roots.as_slice(),
+            uniform_first,
+        );
+        self.held = new_held;
+        self.level += 1;
+        Ok(())
+    }
+}
+
+/// Uniform cubic periodic refinement of `u` at old index `j`: `(ũ[2j], ũ[2j+1])`.
+#[inline]
+fn refine<R: Real>(prev: Point3<R>, cur: Point3<R>, next: Point3<R>) -> (Point3<R>, Point3<R>) {
+    let even = (prev + cur * R::from_f64(6.0) + next) * R::ratio(1, 8);
+    let odd = (cur + next) * R::ratio(1, 2);
+    (even, odd)
+}
+
+/// The step over capacity-erased views (compiled once per scalar type).
+/// `roots` are already the `2n`-th roots; every link view has room for `2n`.
+fn c2ps_in_place<R: Real>(
+    pole: &mut Point3<R>,
+    links: [&mut VecView<Point3<R>>; 5],
+    held: usize,
+    new_held: usize,
+    roots: &[[R; 2]],
+    uniform_first: bool,
+) {
+    let [l1, l2, l3, l4, l5] = links;
+    let n = l1.len();
+    let n2 = 2 * n;
+    let f = Fourier::of(l1, roots, 2);
+    let q00 = *pole;
+    let has3 = held >= 3;
+
+    // Grow every link that will be written; the tail is filled by the sweep.
+    // (Capacity was checked by the caller; a failure here would leave the
+    // length short, so the sweep below only touches indices < len.)
+    for (slot, l) in [&mut *l1, &mut *l2, &mut *l3, &mut *l4, &mut *l5]
+        .into_iter()
+        .enumerate()
+    {
+        if slot < new_held {
+            let _ = l.resize(n2, Point3::ZERO);
+        }
+    }
+    if l1.len() != n2 || l2.len() != n2 || l3.len() != n2 {
+        return;
+    }
+    let last = [
+        l1[n - 1],
+        l2[n - 1],
+        if has3 { l3[n - 1] } else { Point3::ZERO },
+    ];
+    let w11_12 = R::ratio(11, 12);
+    let w1_12 = R::ratio(1, 12);
+    let w1_6 = R::ratio(1, 6);
+    let half = R::ratio(1, 2);
+    let six = R::from_f64(6.0);
+    let eighth = R::ratio(1, 8);
+    let write45 = has3 && l4.len() == n2 && l5.len() == n2;
+
+    for j in (0..n).rev() {
+        let (jm, jp) = (if j == 0 { n - 1 } else { j - 1 }, (j + 1) % n);
+        let get = |l: &VecView<Point3<R>>, k: usize, i: usize| {
+            if j == 0 && i == jm {
+                last[k]
+            } else {
+                l[i]
+            }
+        };
+        let r1 = refine(get(l1, 0, jm), l1[j], l1[jp]);
+        let r2 = refine(get(l2, 1, jm), l2[j], l2[jp]);
+        let r3 = if has3 {
+            refine(get(l3, 2, jm), l3[j], l3[jp])
+        } else {
+            (Point3::ZERO, Point3::ZERO)
+        };
+        for (jj, t1, t2, t3) in [(2 * j, r1.0, r2.0, r3.0), (2 * j + 1, r1.1, r2.1, r3.1)] {
+            let h1 = f.h1(roots[jj]);
+            let h2 = f.h2(roots[(2 * jj) % n2]);
+            if write45 {
+                l5[jj] = (t2 + t3) * half;
+                l4[jj] = (t1 + t2 * six + t3) * eighth;
+            }
+            l3[jj] = (t1 + t2) * half;
+            l2[jj] = if uniform_first {
+                (q00 + t1 * six + t2) * eighth
+            } else {
+                t1 * w11_12 + t2 * w1_12 - h1 * w1_6
+            };
+            l1[jj] = (q00 + f.a) * half + h1 + h2 * half;
+        }
+    }
+    *pole = q00 * R::ratio(3, 4) + f.a * R::ratio(1, 4);
+}

@@ -1,0 +1,129 @@
+//! `RootsOfUnity`: the ring `(c(j/N), s(j/N))`, `j < N`, of the current valence.
+//!
+//! Built once per net from [`super::table`] and doubled in place by each C²PS
+//! step: `new[2j] = old[j]`, `new[2j+1] = old[j]·ω_{2N}` (one complex product,
+//! `ω_{2N}` from a half-angle step kept in `f64`). The error therefore grows by
+//! one rounding per level, not per entry. Storage: `2·CAP` scalars.
+
+use crate::error::Error;
+use crate::real::Real;
+use heapless::{Vec, VecView};
+
+/// The `N`-th roots of unity as `[cos, sin]` pairs, capacity `CAP`.
+#[derive(Clone, Debug)]
+pub struct RootsOfUnity<R, const CAP: usize> {
+    ring: Vec<[R; 2], CAP>,
+    /// `(cos, sin)(2π/N)` in `f64`, the seed of the next doubling.
+    primitive: (f64, f64),
+}
+
+impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
+    /// The ring for valence `n`.
+    pub fn new(n: usize) -> Result<Self, Error> {
+        if n < 3 {
+            return Err(Error::ValenceTooSmall { valence: n });
+        }
+        if n > CAP {
+            return Err(Error::CapacityExceeded {
+                needed: n,
+                capacity: CAP,
+            });
+        }
+        super::primitive_root(n).ok_or(Error::ValenceUnsupported { valence: n })?;
+        // Odd part (or 4 for powers of two) by a short product chain, then doublings.
+        let odd = n >> n.trailing_zeros();
+        let base = if odd == 1 { 4 } else { odd };
+        let mut primitive =
+            super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
+        let mut ring = Vec::new();
+        fill(ring.as_mut_view(), base, primitive)?;
+        while ring.len() < n {
+            primitive = double(ring.as_mut_view(), primitive)?;
+        }
+        Ok(RootsOfUnity { ring, primitive })
+    }
+
+    /// Valence `N` of the ring.
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.ring.len()
+    }
+
+    /// Never true for a constructed ring (valence ≥ 3).
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.ring.is_empty()
+    }
+
+    /// `(c(j/N), s(j/N))` for any `j` (taken mod `N`).
+    #[inline]
+    pub fn get(&self, j: usize) -> [R; 2] {
+        self.ring[j % self.ring.len()]
+    }
+
+    /// All entries, `j = 0..N`.
+    #[inline]
+    pub fn as_slice(&self) -> &[[R; 2]] {
+        &self.ring
+    }
+
+    /// The ring as a capacity-erased view.
+    #[inline]
+    pub fn view(&self) -> &VecView<[R; 2]> {
+        self.ring.as_view()
+    }
+
+    /// Doubles the valence in place: afterwards the ring holds the `2N`-th roots.
+    /// Fails, unchanged, when `2N > CAP`.
+    pub fn double(&mut self) -> Result<(), Error> {
+        self.primitive = double(self.ring.as_mut_view(), self.primitive)?;
+        Ok(())
+    }
+}
+
+/// Fills `ring` with the `n`-th roots: the powers `ω^j` for `j <= n/2` by
+/// repeated multiplication in `f64` (at most 63 products for the odd part),
+/// the rest by symmetry `ω^(n-j) = conj ω^j`.
+fn fill<R: Real>(ring: &mut VecView<[R; 2]>, n: usize, w: (f64, f64)) -> Result<(), Error> {
+    ring.clear();
+    ring.resize(n, [R::ZERO; 2])
+        .map_err(|_| Error::CapacityExceeded {
+            needed: n,
+            capacity: ring.capacity(),
+        })?;
+    let (mut c, mut s) = (1.0f64, 0.0f64);
+    for j in 0..=n / 2 {
+        ring[j] = [R::from_f64(c), R::from_f64(s)];
+        if j > 0 {
+            ring[n - j] = [R::from_f64(c), R::from_f64(-s)];
+        }
+        let c2 = c * w.0 - s * w.1;
+        s = s * w.0 + c * w.1;
+        c = c2;
+    }
+    Ok(())
+}
+
+fn double<R: Real>(ring: &mut VecView<[R; 2]>, w: (f64, f64)) -> Result<(f64, f64), Error> {
+    let n = ring.len();
+    if 2 * n > ring.capacity() {
+        return Err(Error::CapacityExceeded {
+            needed: 2 * n,
+            capacity: ring.capacity(),
+        });
+    }
+    let ch = libm::sqrt(0.5 * (1.0 + w.0));
+    let half = (ch, w.1 / (2.0 * ch));
+    let (hc, hs) = (R::from_f64(half.0), R::from_f64(half.1));
+    ring.resize(2 * n, [R::ZERO; 2])
+        .map_err(|_| Error::CapacityExceeded {
+            needed: 2 * n,
+            capacity: ring.capacity(),
+        })?;
+    for j in (0..n).rev() {
+        let [c, s] = ring[j];
+        ring[2 * j] = [c, s];
+        ring[2 * j + 1] = [c * hc - s * hs, s * hc + c * hs];
+    }
+    Ok(half)
+}
