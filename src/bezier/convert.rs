@@ -15,12 +15,12 @@ pub fn bspline_to_bezier_cubic<R: Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>;
     // Columns first (along v), then rows (along u).
     let mut half = [[Point3::ZERO; 4]; 4];
     for (k, row) in d.iter().enumerate() {
-        for b in 0..4 {
+        for (b, h) in half[k].iter_mut().enumerate() {
             let mut acc = Point3::ZERO;
             for (l, p) in row.iter().enumerate() {
                 acc += *p * m(b, l);
             }
-            half[k][b] = acc;
+            *h = acc;
         }
     }
     let mut out = [[Point3::ZERO; 4]; 4];

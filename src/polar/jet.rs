@@ -67,7 +67,7 @@ impl<R: Real> PoleJet<R> {
         let len = cross.norm();
         let (e1, f1, g1) = (p1.dot(p1), p1.dot(p2), p2.dot(p2));
         let det = e1 * g1 - f1 * f1;
-        if !(len > R::ZERO) || !(det > R::ZERO) || !len.is_finite() {
+        if len <= R::ZERO || det <= R::ZERO || !len.is_finite() || !det.is_finite() {
             return Err(Error::Degenerate);
         }
         let normal = cross * (R::ONE / len);

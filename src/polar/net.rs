@@ -113,7 +113,7 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
             return Err(Error::ValenceTooSmall { valence });
         }
         let per_link = 3 * valence;
-        if coords.len() % per_link != 0 {
+        if !coords.len().is_multiple_of(per_link) {
             return Err(Error::WrongLength {
                 expected: (coords.len() / per_link + 1) * per_link,
                 found: coords.len(),
