@@ -1,8 +1,8 @@
 //! Compile-time table of `cos(2π/o)`, `sin(2π/o)` for odd `o`.
 //!
-//! Method: the angle `x = 2π/o` is divided by 4, `sin` and `cos` of `x/4 ≤ π/6`
-//! are summed from their Taylor series to 24 terms (the truncation is below
-//! 1e-30), then doubled twice with `cos 2y = 1 − 2 sin² y`, `sin 2y = 2 sin y cos y`.
+//! Method: for `x = 2π/o ≤ π/4` the Taylor series of `sin` and `cos` at `x`,
+//! otherwise at the complement `y = π/2 − x ∈ [−π/6, π/4)` with `sin` and `cos`
+//! swapped; 24 terms each (truncation below 1e-30 for `|x| ≤ π/4`).
 //! All of it is `const fn` `f64` arithmetic, evaluated by the compiler, so the
 //! table is read-only data with no start-up cost. Accuracy: within 4e-16 of the
 //! host's `f64::cos`/`sin` (tested in `tests/trig.rs`).
@@ -18,7 +18,7 @@ pub const MAX_ODD_PART: usize = 127;
 const TABLE_LEN: usize = MAX_ODD_PART.div_ceil(2);
 
 const fn sin_cos_small(x: f64) -> (f64, f64) {
-    // Taylor series, 24 terms each; |x| <= pi/6 so x^48/48! < 1e-60.
+    // Taylor series, 24 terms each; |x| <= pi/4 so the tail is below 1e-30.
     let x2 = x * x;
     let mut s = 0.0;
     let mut c = 0.0;
@@ -41,15 +41,15 @@ const fn root_of(o: usize) -> (f64, f64) {
     if o == 1 {
         return (1.0, 0.0);
     }
-    let (mut s, mut c) = sin_cos_small(core::f64::consts::TAU / o as f64 / 4.0);
-    let mut d = 0;
-    while d < 2 {
-        let s2 = 2.0 * s * c;
-        c = 1.0 - 2.0 * s * s;
-        s = s2;
-        d += 1;
+    let x = core::f64::consts::TAU / o as f64;
+    if x <= core::f64::consts::FRAC_PI_4 {
+        let (s, c) = sin_cos_small(x);
+        (c, s)
+    } else {
+        // x in (pi/4, 2pi/3]: the complement y = pi/2 - x lies in [-pi/6, pi/4).
+        let (s, c) = sin_cos_small(core::f64::consts::FRAC_PI_2 - x);
+        (s, c)
     }
-    (c, s)
 }
 
 const fn build() -> [(f64, f64); TABLE_LEN] {

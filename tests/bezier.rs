@@ -1,0 +1,97 @@
+//! Bézier patch evaluation (de Casteljau) against the Bernstein-sum definition.
+
+use capdiv::{Error, Point3, TensorPatch};
+
+fn binom(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+fn bern(n: usize, k: usize, t: f64) -> f64 {
+    binom(n, k) * t.powi(k as i32) * (1.0 - t).powi((n - k) as i32)
+}
+fn dbern(n: usize, k: usize, t: f64) -> f64 {
+    let a = if k > 0 { bern(n - 1, k - 1, t) } else { 0.0 };
+    let b = if k < n { bern(n - 1, k, t) } else { 0.0 };
+    n as f64 * (a - b)
+}
+
+fn patch<const K: usize>(seed: u64) -> TensorPatch<f64, K> {
+    let mut s = seed;
+    let mut rnd = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    };
+    let mut points = [[Point3::ZERO; K]; K];
+    for (i, row) in points.iter_mut().enumerate() {
+        for (j, p) in row.iter_mut().enumerate() {
+            *p = Point3::new(i as f64 + 0.2 * rnd(), j as f64 + 0.2 * rnd(), rnd());
+        }
+    }
+    TensorPatch { points }
+}
+
+fn check<const K: usize>() {
+    let d = K - 1;
+    for seed in 0..20 {
+        let p = patch::<K>(seed);
+        for &(u, v) in &[
+            (0.0, 0.0),
+            (1.0, 1.0),
+            (0.3, 0.7),
+            (0.5, 0.5),
+            (0.9, 0.1),
+            (1.0, 0.25),
+        ] {
+            let got = p.evaluate(u, v).unwrap();
+            let (mut x, mut xu, mut xv) = (Point3::ZERO, Point3::ZERO, Point3::ZERO);
+            for i in 0..K {
+                for j in 0..K {
+                    let q = p.points[i][j];
+                    x += q * (bern(d, i, u) * bern(d, j, v));
+                    xu += q * (dbern(d, i, u) * bern(d, j, v));
+                    xv += q * (bern(d, i, u) * dbern(d, j, v));
+                }
+            }
+            // Values are O(K); de Casteljau and the Bernstein sum differ by rounding only.
+            assert!(got.position.max_abs_diff(x) < 1e-13);
+            assert!(got.du.max_abs_diff(xu) < 1e-12);
+            assert!(got.dv.max_abs_diff(xv) < 1e-12);
+            let n = got.normal().unwrap();
+            assert!((n.norm() - 1.0).abs() < 1e-14);
+            assert!(n.dot(xu).abs() < 1e-12 && n.dot(xv).abs() < 1e-12);
+            assert!(n.dot(xu.cross(xv)) > 0.0);
+        }
+    }
+}
+
+#[test]
+fn bicubic_evaluation_matches_bernstein_sums() {
+    check::<4>();
+}
+
+#[test]
+fn biquartic_evaluation_matches_bernstein_sums() {
+    check::<5>();
+}
+
+#[test]
+fn evaluation_rejects_parameters_outside_the_domain() {
+    let p = patch::<4>(1);
+    for (u, v) in [
+        (-0.1, 0.5),
+        (0.5, 1.1),
+        (f64::NAN, 0.5),
+        (0.5, f64::INFINITY),
+    ] {
+        assert_eq!(p.evaluate(u, v), Err(Error::OutOfDomain));
+    }
+}
+
+#[test]
+fn collapsed_patch_has_no_normal() {
+    let p = TensorPatch::<f64, 4> {
+        points: [[Point3::new(1.0, 2.0, 3.0); 4]; 4],
+    };
+    assert_eq!(p.normal(0.5, 0.5), Err(Error::Degenerate));
+}
