@@ -1,0 +1,75 @@
+//! Time per output point of one C²PS step, valence 6·2^k → 6·2^(k+1), for
+//! k = 0..13 (up to valence 49152), in f64 and f32. The step is O(n), so the
+//! time per point must stay flat. `scripts/bench-table.py` turns the results
+//! into the README's table.
+
+use capdiv::{FirstStep, PolarNet, Real};
+use criterion::{BatchSize, BenchmarkId, Criterion, Throughput};
+use std::hint::black_box;
+use std::time::Duration;
+
+/// A paraboloid-like valence-6 configuration with 5 links.
+fn sample<R: Real>() -> ([R; 3], Vec<Vec<[R; 3]>>) {
+    let links = (1..=5)
+        .map(|i| {
+            (0..6)
+                .map(|j| {
+                    let t = std::f64::consts::TAU * j as f64 / 6.0;
+                    let r = i as f64;
+                    [r * t.cos(), r * t.sin(), 0.2 * r * r + 0.05 * (j as f64)].map(R::from_f64)
+                })
+                .collect()
+        })
+        .collect();
+    ([R::ZERO; 3], links)
+}
+
+/// Refines to valence `6·2^k` (stored with room for one more step) and
+/// benchmarks that one more step.
+fn bench_level<R: Real, const CAP: usize>(c: &mut Criterion, group: &str, k: u32) {
+    let (pole, links) = sample::<R>();
+    let mut net: Box<PolarNet<R, CAP>> = Box::new(PolarNet::new(pole, &links).unwrap());
+    for _ in 0..k {
+        net.step(FirstStep::Uniform).unwrap();
+    }
+    let n_out = 2 * net.valence();
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(n_out as u64));
+    g.bench_with_input(BenchmarkId::from_parameter(n_out), &net, |b, net| {
+        b.iter_batched_ref(
+            || net.clone(),
+            |n| black_box(n.step(FirstStep::Uniform)),
+            BatchSize::LargeInput,
+        )
+    });
+    g.finish();
+}
+
+macro_rules! levels {
+    ($c:expr, $r:ty, $group:expr; $($k:literal),*) => {
+        $( bench_level::<$r, { 6 << ($k + 1) }>($c, $group, $k); )*
+    };
+}
+
+fn benches(c: &mut Criterion) {
+    levels!(c, f64, "c2ps_step_f64"; 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13);
+    levels!(c, f32, "c2ps_step_f32"; 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13);
+}
+
+fn main() {
+    // Nets of valence 98304 are tens of MiB; give them room.
+    std::thread::Builder::new()
+        .stack_size(1 << 30)
+        .spawn(|| {
+            let mut c = Criterion::default()
+                .warm_up_time(Duration::from_millis(500))
+                .measurement_time(Duration::from_secs(2))
+                .sample_size(20)
+                .configure_from_args();
+            benches(&mut c);
+            c.final_summary();
+        })
+        .expect("bench thread")
+        .join()
+        .expect("bench thread panicked");
+}
