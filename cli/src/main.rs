@@ -1,1 +1,71 @@
-fn main() {}
+//! The `capdiv` binary: parses the command line, runs the command on a worker
+//! thread with a large stack (nets live on the stack, see
+//! [`capdiv_cli::capacity`]), then writes the output in one piece.
+//!
+//! Every failure prints exactly one line `error: …` on stderr, nothing on
+//! stdout, and exits with status 2.
+
+use capdiv_cli::args::Cli;
+use capdiv_cli::capacity::WORK_STACK;
+use capdiv_cli::commands;
+use capdiv_cli::error::{CliError, EXIT_FAILURE};
+use clap::error::ErrorKind;
+use clap::Parser;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage(e),
+    };
+    // A panic would be a bug; keep even that to one line.
+    std::panic::set_hook(Box::new(|info| {
+        let msg = info.to_string().replace('\n', " ");
+        eprintln!("error: internal error: {msg}");
+    }));
+    let worker = std::thread::Builder::new()
+        .name("capdiv-work".into())
+        .stack_size(WORK_STACK)
+        .spawn(move || commands::run(cli.command));
+    let outcome = match worker {
+        Ok(handle) => match handle.join() {
+            Ok(result) => result,
+            // The panic hook has printed the message.
+            Err(_) => return ExitCode::from(EXIT_FAILURE as u8),
+        },
+        Err(e) => Err(CliError::Io {
+            path: "<worker thread>".into(),
+            message: e.to_string(),
+        }),
+    };
+    match outcome.and_then(|o| o.write()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{}", e.line());
+            ExitCode::from(EXIT_FAILURE as u8)
+        }
+    }
+}
+
+/// Help and version go to stdout (status 0); a bare `capdiv` prints the help
+/// on stderr; every other command-line error is one line.
+fn usage(e: clap::Error) -> ExitCode {
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            ExitCode::SUCCESS
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            ExitCode::from(EXIT_FAILURE as u8)
+        }
+        _ => {
+            let rendered = e.render().to_string();
+            let first = rendered.lines().next().unwrap_or("error: bad command line");
+            let first = first.strip_prefix("error: ").unwrap_or(first);
+            let err = CliError::Usage(format!("{first} (see 'capdiv --help')"));
+            eprintln!("{}", err.line());
+            ExitCode::from(EXIT_FAILURE as u8)
+        }
+    }
+}

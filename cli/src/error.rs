@@ -1,0 +1,108 @@
+//! The CLI's error type. Every failure — usage, I/O, malformed JSON, wrong
+//! schema, unsupported kind, capacity, kernel error — is reported as exactly
+//! one line on stderr and exit status [`EXIT_FAILURE`].
+
+use core::fmt;
+
+/// Exit status of every failure.
+pub const EXIT_FAILURE: i32 = 2;
+
+/// Everything that can make a command fail.
+#[derive(Debug)]
+pub enum CliError {
+    /// The command line is wrong (message from clap or from our own checks).
+    Usage(String),
+    /// Reading the input or writing the output failed.
+    Io {
+        /// The file (or `<stdin>`, `<stdout>`).
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// The input is not JSON.
+    MalformedJson {
+        /// The input's name.
+        source: String,
+        /// serde_json's message (with line and column).
+        message: String,
+    },
+    /// The input is JSON but not of the expected schema.
+    Schema {
+        /// The input's name.
+        source: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A valid input whose `kind` has no implementation yet (EG inputs).
+    Unsupported {
+        /// The input's name.
+        source: String,
+        /// The `kind` tag.
+        kind: &'static str,
+    },
+    /// The valence the job needs exceeds every compiled capacity tier.
+    Capacity {
+        /// What was asked for, in words.
+        what: String,
+        /// The largest tier.
+        max: usize,
+    },
+    /// The kernel refused the configuration.
+    Kernel {
+        /// The input's name.
+        source: String,
+        /// The kernel's error.
+        error: capdiv::Error,
+    },
+    /// A result coordinate overflowed the chosen precision.
+    NonFiniteResult {
+        /// The input's name.
+        source: String,
+    },
+}
+
+impl CliError {
+    /// Attaches the input's name to a kernel error.
+    pub fn kernel(source: &str, error: capdiv::Error) -> Self {
+        CliError::Kernel {
+            source: source.to_string(),
+            error,
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Usage(m) => write!(f, "{m}"),
+            CliError::Io { path, message } => write!(f, "{path}: {message}"),
+            CliError::MalformedJson { source, message } => {
+                write!(f, "{source}: malformed JSON: {message}")
+            }
+            CliError::Schema { source, message } => {
+                write!(f, "{source}: wrong schema: {message}")
+            }
+            CliError::Unsupported { source, kind } => {
+                write!(f, "{source}: kind '{kind}' is not supported yet")
+            }
+            CliError::Capacity { what, max } => write!(
+                f,
+                "{what} exceeds the largest supported capacity {max} (use fewer steps)"
+            ),
+            CliError::Kernel { source, error } => write!(f, "{source}: {error}"),
+            CliError::NonFiniteResult { source } => write!(
+                f,
+                "{source}: a result coordinate is not finite (input too large for the precision)"
+            ),
+        }
+    }
+}
+
+impl CliError {
+    /// The message as printed: `error: …`, newlines folded so that it is
+    /// always exactly one line.
+    pub fn line(&self) -> String {
+        let text = format!("error: {self}");
+        text.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+}

@@ -1,0 +1,146 @@
+//! Reading and parsing the JSON input.
+//!
+//! The schema is tagged by `kind` (spec C2PS.md §1 for `polar`):
+//!
+//! ```json
+//! {"kind": "polar", "pole": [x, y, z], "links": [[[x, y, z], ...], ...]}
+//! ```
+//!
+//! `links[0]` is the 1-link; every link is a closed ring, counter-clockwise seen
+//! from the side the surface normal points to. The EG inputs `cnet` and `dnet`
+//! (spec EG.md) are parsed already, so that adding the EG commands only needs a
+//! new arm in the command dispatch; until then they are refused with
+//! [`CliError::Unsupported`]. Unknown fields are rejected.
+
+use crate::error::CliError;
+use serde::{Deserialize, Serialize};
+use std::io::Read;
+
+/// One point `[x, y, z]`.
+pub type P3 = [f64; 3];
+
+/// A parsed input, by its `kind` tag.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum Input {
+    /// A polar configuration (C²PS).
+    Polar(PolarInput),
+    /// An EG control net around an extraordinary node: center and `n` sectors
+    /// of 6 points (spec EG.md). Not supported yet.
+    Cnet(CnetInput),
+    /// An EG d-net: `n` sectors of 12 points, optional `c0` (spec EG.md). Not
+    /// supported yet.
+    Dnet(DnetInput),
+}
+
+/// `{"kind": "polar", "pole", "links"}`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PolarInput {
+    /// The pole `q00`.
+    pub pole: P3,
+    /// Links 1, 2, …, each a closed ring of `n` points.
+    pub links: Vec<Vec<P3>>,
+}
+
+/// `{"kind": "cnet", "center", "sectors"}`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CnetInput {
+    /// The extraordinary node.
+    pub center: P3,
+    /// One entry of 6 points per sector.
+    pub sectors: Vec<[P3; 6]>,
+}
+
+/// `{"kind": "dnet", "sectors", "c0"?}`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DnetInput {
+    /// One entry of 12 points per sector.
+    pub sectors: Vec<[P3; 12]>,
+    /// The central point, when given.
+    #[serde(default)]
+    pub c0: Option<P3>,
+}
+
+impl Input {
+    /// The `kind` tag as written in the input.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Input::Polar(_) => "polar",
+            Input::Cnet(_) => "cnet",
+            Input::Dnet(_) => "dnet",
+        }
+    }
+
+    /// The polar configuration, or [`CliError::Unsupported`] for other kinds.
+    pub fn into_polar(self, source: &str) -> Result<PolarInput, CliError> {
+        match self {
+            Input::Polar(p) => Ok(p),
+            other => Err(CliError::Unsupported {
+                source: source.to_string(),
+                kind: other.kind(),
+            }),
+        }
+    }
+}
+
+/// An input read into memory, with the name used in messages.
+#[derive(Clone, Debug)]
+pub struct Source {
+    /// The path as given, or `<stdin>` for `-`.
+    pub name: String,
+    /// The whole text.
+    pub text: String,
+}
+
+impl Source {
+    /// Reads `path`, or standard input for `-`.
+    pub fn read(path: &str) -> Result<Self, CliError> {
+        if path == "-" {
+            let mut text = String::new();
+            std::io::stdin()
+                .read_to_string(&mut text)
+                .map_err(|e| CliError::Io {
+                    path: "<stdin>".into(),
+                    message: e.to_string(),
+                })?;
+            return Ok(Source {
+                name: "<stdin>".into(),
+                text,
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| CliError::Io {
+            path: path.to_string(),
+            message: e.to_string(),
+        })?;
+        Ok(Source {
+            name: path.to_string(),
+            text,
+        })
+    }
+
+    /// Parses the text; syntax errors are [`CliError::MalformedJson`], the rest
+    /// (missing or unknown fields, wrong lengths, unknown kind) [`CliError::Schema`].
+    pub fn parse(&self) -> Result<Input, CliError> {
+        parse(&self.name, &self.text)
+    }
+}
+
+/// Parses an input text named `name`.
+pub fn parse(name: &str, text: &str) -> Result<Input, CliError> {
+    serde_json::from_str::<Input>(text).map_err(|e| {
+        let message = e.to_string();
+        match e.classify() {
+            serde_json::error::Category::Data => CliError::Schema {
+                source: name.to_string(),
+                message,
+            },
+            _ => CliError::MalformedJson {
+                source: name.to_string(),
+                message,
+            },
+        }
+    })
+}

@@ -1,0 +1,35 @@
+//! `capdiv-cli`: the command-line front end of the `capdiv` kernel.
+//!
+//! Data flows one way through small modules, one job each:
+//!
+//! - [`args`]: the command line (clap derive);
+//! - [`input`]: reading a source (file or `-`) and parsing the JSON input,
+//!   dispatched on its `kind` tag (`polar` now; `cnet`, `dnet` parsed but
+//!   refused until the EG commands exist);
+//! - [`capacity`]: choosing a compile-time net capacity for the valence a job
+//!   needs (spec C2PS.md §1: level `m` has valence `n·2^m`);
+//! - [`commands`]: one module per subcommand, each producing its output in
+//!   memory;
+//! - [`output`]: the serialisable output types and the all-or-nothing writers
+//!   (stdout, or a file written through a temporary file and a rename);
+//! - [`obj`]: tessellation of Bézier patches into a Wavefront OBJ mesh;
+//! - [`samples`]: analytic sample configurations for `capdiv demo`;
+//! - [`error`]: the one-line error type (every failure exits with status 2).
+
+pub mod args;
+pub mod capacity;
+pub mod commands;
+pub mod error;
+pub mod input;
+pub mod obj;
+pub mod output;
+pub mod samples;
+
+pub use error::CliError;
+
+/// Coordinates the CLI computes in and prints: `f32` or `f64`.
+///
+/// `Display` and `Serialize` of both print the shortest representation that
+/// round-trips, so JSON and OBJ output can be read back exactly.
+pub trait Scalar: capdiv::Real + serde::Serialize + core::fmt::Display {}
+impl<T: capdiv::Real + serde::Serialize + core::fmt::Display> Scalar for T {}

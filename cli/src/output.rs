@@ -1,0 +1,190 @@
+//! Output types (serialised with serde_json) and the all-or-nothing writers.
+//!
+//! Every command builds its whole output in memory first; nothing reaches
+//! stdout or the output file before the command has succeeded. Files are
+//! written to a temporary sibling and renamed into place, so a failure never
+//! leaves a partial file.
+
+use crate::error::CliError;
+use crate::Scalar;
+use capdiv::{BicubicPatch, Point3, PolarNet, PoleGeometry, PoleJet, TensorPatch};
+use serde::Serialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A polar configuration, the input schema (`kind: "polar"`).
+#[derive(Clone, Debug, Serialize)]
+pub struct PolarOutput<R> {
+    /// Always `"polar"`.
+    pub kind: &'static str,
+    /// The pole `q00`.
+    pub pole: [R; 3],
+    /// Links 1..K (K ≤ 5, what the net holds).
+    pub links: Vec<Vec<[R; 3]>>,
+}
+
+impl<R: Scalar> PolarOutput<R> {
+    /// The configuration a net holds at its current level.
+    pub fn of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Self {
+        let links = (1..=net.links_held())
+            .filter_map(|i| net.link(i))
+            .map(|l| l.iter().map(|p| p.0).collect())
+            .collect();
+        PolarOutput {
+            kind: "polar",
+            pole: net.pole().0,
+            links,
+        }
+    }
+
+    /// `true` when every coordinate is finite.
+    pub fn is_finite(&self) -> bool {
+        finite(&self.pole) && self.links.iter().flatten().all(finite)
+    }
+}
+
+/// The pole's jet and geometry (spec C2PS.md §4).
+#[derive(Clone, Debug, Serialize)]
+pub struct PoleOutput<R> {
+    /// Limit point `p0`.
+    pub limit: [R; 3],
+    /// Eigencoefficients `p0..p5`.
+    pub p: [[R; 3]; 6],
+    /// Unit normal.
+    pub normal: [R; 3],
+    /// Gaussian curvature `K`.
+    pub gaussian_curvature: R,
+    /// Mean curvature `H`.
+    pub mean_curvature: R,
+    /// `H ± √(H² − K)`.
+    pub principal_curvatures: [R; 2],
+}
+
+impl<R: Scalar> PoleOutput<R> {
+    /// From the kernel's jet and geometry.
+    pub fn new(jet: &PoleJet<R>, g: &PoleGeometry<R>) -> Self {
+        PoleOutput {
+            limit: jet.limit().0,
+            p: jet.p.map(|p| p.0),
+            normal: g.normal.0,
+            gaussian_curvature: g.gaussian,
+            mean_curvature: g.mean,
+            principal_curvatures: g.principal,
+        }
+    }
+
+    /// `true` when every number is finite.
+    pub fn is_finite(&self) -> bool {
+        finite(&self.limit)
+            && self.p.iter().all(finite)
+            && finite(&self.normal)
+            && [self.gaussian_curvature, self.mean_curvature]
+                .iter()
+                .chain(self.principal_curvatures.iter())
+                .all(|v| v.is_finite())
+    }
+}
+
+/// One Bézier patch: `{"level", "degree", "points"}`.
+#[derive(Clone, Debug, Serialize)]
+pub struct PatchOutput<R> {
+    /// Subdivision level of the ring (0 also for the outer region).
+    pub level: u32,
+    /// Degree in each direction (3 for C²PS).
+    pub degree: usize,
+    /// `(degree+1)²` control points, row `i` (along `u`, outward) after row,
+    /// `j` (along `v`, counter-clockwise) within a row.
+    pub points: Vec<[R; 3]>,
+}
+
+impl<R: Scalar> PatchOutput<R> {
+    /// From a tensor patch of `K×K` points.
+    pub fn new<const K: usize>(level: u32, patch: &TensorPatch<R, K>) -> Self {
+        PatchOutput {
+            level,
+            degree: K - 1,
+            points: patch.points.iter().flatten().map(|p| p.0).collect(),
+        }
+    }
+}
+
+/// A patch with the level it belongs to (what `patches` collects).
+#[derive(Clone, Copy, Debug)]
+pub struct LeveledPatch<R> {
+    /// Subdivision level (0 for the outer region).
+    pub level: u32,
+    /// The bicubic Bézier patch.
+    pub patch: BicubicPatch<R>,
+}
+
+fn finite<R: Scalar>(p: &[R; 3]) -> bool {
+    Point3(*p).is_finite()
+}
+
+/// Serialises `value` as JSON, compact or pretty, with a final newline.
+pub fn to_json<T: Serialize>(value: &T, pretty: bool) -> Vec<u8> {
+    let mut out = if pretty {
+        serde_json::to_vec_pretty(value)
+    } else {
+        serde_json::to_vec(value)
+    }
+    // Cannot fail: the output types are plain structs of numbers and strings.
+    .unwrap_or_default();
+    out.push(b'\n');
+    out
+}
+
+/// Where a command's output goes.
+#[derive(Clone, Debug)]
+pub enum Sink {
+    /// Standard output.
+    Stdout,
+    /// A file, replaced atomically.
+    File(PathBuf),
+}
+
+impl Sink {
+    /// `Some(path)` → file, `None` → stdout.
+    pub fn from_option(path: Option<PathBuf>) -> Self {
+        path.map_or(Sink::Stdout, Sink::File)
+    }
+
+    /// Writes all of `bytes` at once.
+    pub fn write(&self, bytes: &[u8]) -> Result<(), CliError> {
+        match self {
+            Sink::Stdout => {
+                let mut out = std::io::stdout().lock();
+                out.write_all(bytes)
+                    .and_then(|_| out.flush())
+                    .map_err(|e| CliError::Io {
+                        path: "<stdout>".into(),
+                        message: e.to_string(),
+                    })
+            }
+            Sink::File(path) => write_atomic(path, bytes),
+        }
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it to
+/// `path`: readers see either no file or the whole file.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let io_err = |e: std::io::Error| CliError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    let name = path
+        .file_name()
+        .ok_or_else(|| io_err(std::io::Error::other("not a file name")))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(tmp_name);
+    let result = std::fs::File::create(&tmp)
+        .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
+        .and_then(|_| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result.map_err(io_err)
+}
