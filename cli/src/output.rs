@@ -123,15 +123,83 @@ fn finite<R: Scalar>(p: &[R; 3]) -> bool {
 
 /// Serialises `value` as JSON, compact or pretty, with a final newline.
 pub fn to_json<T: Serialize>(value: &T, pretty: bool) -> Vec<u8> {
-    let mut out = if pretty {
-        serde_json::to_vec_pretty(value)
-    } else {
-        serde_json::to_vec(value)
-    }
     // Cannot fail: the output types are plain structs of numbers and strings.
-    .unwrap_or_default();
+    let compact = serde_json::to_vec(value).unwrap_or_default();
+    let mut out = if pretty { indent(&compact) } else { compact };
     out.push(b'\n');
     out
+}
+
+/// Re-indents compact JSON, two spaces a level, keeping arrays that hold no
+/// array or object on one line (a point stays `[x, y, z]`). Works on the text,
+/// so numbers keep serde_json's shortest round-trip form (also for `f32`).
+pub fn indent(compact: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(compact.len() * 2);
+    let mut depth = 0usize;
+    // Nesting of open containers: `true` when printed on one line.
+    let mut inline: Vec<bool> = Vec::new();
+    let newline = |out: &mut Vec<u8>, depth: usize| {
+        out.push(b'\n');
+        out.extend(std::iter::repeat_n(b' ', 2 * depth));
+    };
+    let mut i = 0;
+    while i < compact.len() {
+        let c = compact[i];
+        match c {
+            b'"' => {
+                // Copy a string literal verbatim, escapes included.
+                let start = i;
+                i += 1;
+                while i < compact.len() && compact[i] != b'"' {
+                    i += if compact[i] == b'\\' { 2 } else { 1 };
+                }
+                out.extend_from_slice(&compact[start..(i + 1).min(compact.len())]);
+            }
+            b'[' | b'{' => {
+                let close = if c == b'[' { b']' } else { b'}' };
+                let flat = c == b'[' && is_flat(&compact[i + 1..]);
+                let empty = compact.get(i + 1) == Some(&close);
+                out.push(c);
+                inline.push(flat || empty);
+                depth += 1;
+                if !(flat || empty) {
+                    newline(&mut out, depth);
+                }
+            }
+            b']' | b'}' => {
+                depth = depth.saturating_sub(1);
+                if !inline.pop().unwrap_or(true) {
+                    newline(&mut out, depth);
+                }
+                out.push(c);
+            }
+            b',' => {
+                out.push(b',');
+                if inline.last().copied().unwrap_or(false) {
+                    out.push(b' ');
+                } else {
+                    newline(&mut out, depth);
+                }
+            }
+            b':' => out.extend_from_slice(b": "),
+            _ => out.push(c),
+        }
+        i += 1;
+    }
+    out
+}
+
+/// `true` when the array whose body starts at `rest` closes before any `[`,
+/// `{` or string opens.
+fn is_flat(rest: &[u8]) -> bool {
+    for &c in rest {
+        match c {
+            b']' => return true,
+            b'[' | b'{' | b'"' => return false,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// Where a command's output goes.

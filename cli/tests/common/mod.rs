@@ -1,0 +1,159 @@
+//! Shared helpers of the CLI integration tests: run the built binary, build
+//! test configurations, parse outputs.
+#![allow(dead_code)]
+
+use serde_json::{json, Value};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// What one run of the binary produced.
+pub struct Run {
+    pub code: Option<i32>,
+    pub stdout: Vec<u8>,
+    pub stderr: String,
+}
+
+impl Run {
+    pub fn stdout_str(&self) -> String {
+        String::from_utf8(self.stdout.clone()).expect("stdout is UTF-8")
+    }
+    pub fn json(&self) -> Value {
+        serde_json::from_slice(&self.stdout).unwrap_or_else(|e| {
+            panic!(
+                "stdout is not JSON ({e}); stderr: {}; code {:?}",
+                self.stderr, self.code
+            )
+        })
+    }
+    /// Asserts success and returns the JSON on stdout.
+    pub fn ok_json(&self) -> Value {
+        self.assert_ok();
+        self.json()
+    }
+    pub fn assert_ok(&self) {
+        assert_eq!(self.code, Some(0), "stderr: {}", self.stderr);
+        assert!(self.stderr.is_empty(), "stderr: {}", self.stderr);
+    }
+}
+
+/// Runs `capdiv args…`, feeding `stdin` when given.
+pub fn capdiv(args: &[&str], stdin: Option<&[u8]>) -> Run {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_capdiv"));
+    cmd.args(args)
+        .stdin(if stdin.is_some() {
+            Stdio::piped()
+        } else {
+            Stdio::null()
+        })
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    let mut child = cmd.spawn().expect("spawn capdiv");
+    if let Some(bytes) = stdin {
+        let mut pipe = child.stdin.take().expect("stdin pipe");
+        pipe.write_all(bytes).expect("write stdin");
+    }
+    let out = child.wait_with_output().expect("wait capdiv");
+    Run {
+        code: out.status.code(),
+        stdout: out.stdout,
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// A temporary directory for inputs and outputs.
+pub fn tempdir() -> tempfile::TempDir {
+    tempfile::tempdir().expect("tempdir")
+}
+
+/// Writes `value` as JSON to `dir/name` and returns the path.
+pub fn write_json(dir: &Path, name: &str, value: &Value) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, serde_json::to_vec(value).unwrap()).unwrap();
+    path
+}
+
+/// Path as `&str` for the command line.
+pub fn s(p: &Path) -> &str {
+    p.to_str().expect("UTF-8 path")
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1) (64-bit LCG).
+pub struct Lcg(u64);
+impl Lcg {
+    pub fn new(seed: u64) -> Self {
+        Lcg(seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407))
+    }
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+}
+
+/// A polar configuration of valence `n` with `k` links: link `i` near the
+/// circle of radius `i`, counter-clockwise, with a bump and noise of size
+/// `0.1` so that nothing is symmetric.
+pub fn config(n: usize, k: usize, seed: u64) -> (([f64; 3]), Vec<Vec<[f64; 3]>>) {
+    let mut rng = Lcg::new(seed);
+    let pole = [0.1 * rng.next(), 0.1 * rng.next(), 0.2 + 0.1 * rng.next()];
+    let links = (1..=k)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let t = std::f64::consts::TAU * j as f64 / n as f64;
+                    let r = i as f64;
+                    [
+                        r * t.cos() + 0.1 * rng.next(),
+                        r * t.sin() + 0.1 * rng.next(),
+                        0.3 * r * r * (1.0 + 0.5 * t.cos()) + 0.1 * rng.next(),
+                    ]
+                })
+                .collect()
+        })
+        .collect();
+    (pole, links)
+}
+
+/// The input JSON of a configuration.
+pub fn polar_json(pole: [f64; 3], links: &[Vec<[f64; 3]>]) -> Value {
+    json!({"kind": "polar", "pole": pole, "links": links})
+}
+
+/// A point `[x, y, z]` from JSON.
+pub fn p3(v: &Value) -> [f64; 3] {
+    let a = v.as_array().expect("point is an array");
+    assert_eq!(a.len(), 3, "point has 3 coordinates");
+    [0, 1, 2].map(|k| a[k].as_f64().expect("coordinate is a number"))
+}
+
+/// `(pole, links)` of a polar configuration printed by the CLI.
+pub fn parse_polar(v: &Value) -> ([f64; 3], Vec<Vec<[f64; 3]>>) {
+    assert_eq!(v["kind"], "polar");
+    let obj = v.as_object().unwrap();
+    assert_eq!(obj.len(), 3, "exactly kind, pole, links: {obj:?}");
+    let links = v["links"]
+        .as_array()
+        .expect("links is an array")
+        .iter()
+        .map(|l| l.as_array().expect("link").iter().map(p3).collect())
+        .collect();
+    (p3(&v["pole"]), links)
+}
+
+/// Largest absolute coordinate of a configuration (its scale).
+pub fn scale(pole: &[f64; 3], links: &[Vec<[f64; 3]>]) -> f64 {
+    links
+        .iter()
+        .flatten()
+        .chain(std::iter::once(pole))
+        .flat_map(|p| p.iter())
+        .fold(0.0f64, |m, c| m.max(c.abs()))
+}
+
+/// Largest coordinate difference of two points.
+pub fn diff(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
+}
