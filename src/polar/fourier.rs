@@ -1,6 +1,7 @@
 //! The five Fourier sums of the 1-link (spec C2PS.md §2):
 //! `A = mean q1[h]`, `C_k = mean c(kh/n) q1[h]`, `S_k = mean s(kh/n) q1[h]`, k = 1, 2.
 
+use super::index::{add_mod, at};
 use crate::point::Point3;
 use crate::real::Real;
 
@@ -27,9 +28,12 @@ impl<R: Real> Fourier<R> {
             c2: Point3::ZERO,
             s2: Point3::ZERO,
         };
+        let none = [R::ZERO; 2];
         for (h, q) in link.iter().enumerate() {
-            let [c, s] = roots[stride * h];
-            let [c2, s2] = roots[(2 * stride * h) % len];
+            // stride·h < len; (2·stride·h) mod len by one conditional subtraction.
+            let k = stride.wrapping_mul(h);
+            let [c, s] = at(roots, k, none);
+            let [c2, s2] = at(roots, add_mod(k, k, len), none);
             f.a += *q;
             f.c1 += *q * c;
             f.s1 += *q * s;

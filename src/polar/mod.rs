@@ -5,6 +5,7 @@
 //! and read out as a [`PoleJet`] (§4) or as bicubic ring patches (§5).
 
 mod fourier;
+pub(crate) mod index;
 pub mod jet;
 pub mod net;
 pub mod outer;

@@ -6,6 +6,7 @@
 //! `n` periodic patches. Together with the rings of levels 0, 1, … it covers
 //! everything but the shrinking hole around the pole.
 
+use super::index::at;
 use super::net::validate;
 use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
 use crate::error::Error;
@@ -57,15 +58,20 @@ impl<'a, R: Real, L: AsRef<[[R; 3]]>> OuterRegion<'a, R, L> {
             return Err(Error::OutOfDomain);
         }
         let n = self.valence;
-        let (span, column) = (i / n, i % n);
+        // n >= 3 (validated); the checked forms only spare divide-by-zero paths.
+        let (Some(span), Some(column)) = (i.checked_div(n), i.checked_rem(n)) else {
+            return Err(Error::OutOfDomain);
+        };
         // r in [k, k+1] with k = 4 + span uses links k-1..k+2 (1-based),
         // i.e. slice indices k-2..k+1.
         let first = span + 2;
         let mut d = [[Point3::ZERO; 4]; 4];
         for (k, row) in d.iter_mut().enumerate() {
-            let link = self.links[first + k].as_ref();
+            // first + k <= L - 2 for i < len(), and every link has n points.
+            let link = self.links.get(first + k).map_or(&[][..], |l| l.as_ref());
             for (l, p) in row.iter_mut().enumerate() {
-                *p = Point3(link[(column + n + l - 1) % n]);
+                let idx = (column + n + l - 1).checked_rem(n).unwrap_or(0);
+                *p = Point3(at(link, idx, [R::ZERO; 3]));
             }
         }
         Ok(BicubicPatch {

@@ -8,6 +8,7 @@
 //! `r ∈ [2+span, 3+span]`, `τ ∈ [column/N, (column+1)/N]`; its `u` runs outward,
 //! its `v` counter-clockwise.
 
+use super::index::at;
 use super::net::PolarNet;
 use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
 use crate::error::Error;
@@ -37,9 +38,12 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
         }
         let mut d = [[Point3::ZERO; 4]; 4];
         for (k, row) in d.iter_mut().enumerate() {
-            let link = &self.links[span + k];
+            // span + k <= 4 and every stored link has n points: in range.
+            let link: &[Point3<R>] = self.links.get(span + k).map_or(&[], |l| l);
             for (l, p) in row.iter_mut().enumerate() {
-                *p = link[(column + n + l - 1) % n];
+                // n >= 3 here; checked_rem only spares a divide-by-zero path.
+                let idx = (column + n + l - 1).checked_rem(n).unwrap_or(0);
+                *p = at(link, idx, Point3::ZERO);
             }
         }
         Ok(BicubicPatch {

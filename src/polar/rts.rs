@@ -2,6 +2,7 @@
 //! periodic refinement (`q̃ = q`) and `τ = j/n`. In place, O(n).
 
 use super::fourier::Fourier;
+use super::index::{add_mod, at, put};
 use super::net::PolarNet;
 use crate::point::Point3;
 use crate::real::Real;
@@ -54,17 +55,28 @@ fn rts_in_place<R: Real>(
         return;
     }
     let half = R::ratio(1, 2);
+    let z = Point3::ZERO;
+    let no_root = [R::ZERO; 2];
     for j in 0..n {
-        let (q1, q2, q3) = (l1[j], l2[j], if has3 { l3[j] } else { Point3::ZERO });
-        let h1 = f.h1(roots[j]);
-        let h2 = f.h2(roots[(2 * j) % n]);
+        let (q1, q2, q3) = (
+            at(l1, j, z),
+            at(l2, j, z),
+            if has3 { at(l3, j, z) } else { z },
+        );
+        let h1 = f.h1(at(roots, j, no_root));
+        // (2j) mod n, for j < n.
+        let h2 = f.h2(at(roots, add_mod(j, j, n), no_root));
         if has3 {
-            l5[j] = (q2 + q3) * half;
-            l4[j] = (q1 + q2 * R::from_f64(6.0) + q3) * R::ratio(1, 8);
+            put(l5, j, (q2 + q3) * half);
+            put(l4, j, (q1 + q2 * R::from_f64(6.0) + q3) * R::ratio(1, 8));
         }
-        l3[j] = (q1 + q2) * half;
-        l2[j] = q1 * R::ratio(11, 12) + q2 * R::ratio(1, 12) - h1 * R::ratio(1, 6);
-        l1[j] = (q00 + f.a) * half + h1 + h2 * half;
+        put(l3, j, (q1 + q2) * half);
+        put(
+            l2,
+            j,
+            q1 * R::ratio(11, 12) + q2 * R::ratio(1, 12) - h1 * R::ratio(1, 6),
+        );
+        put(l1, j, (q00 + f.a) * half + h1 + h2 * half);
     }
     *pole = q00 * R::ratio(3, 4) + f.a * R::ratio(1, 4);
 }

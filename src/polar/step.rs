@@ -9,6 +9,7 @@
 //! second copy of the net; stack use is a fixed number of points.
 
 use super::fourier::Fourier;
+use super::index::{add_mod, at, next_mod, put};
 use super::net::{FirstStep, PolarNet};
 use crate::error::Error;
 use crate::point::Point3;
@@ -92,10 +93,12 @@ fn c2ps_in_place<R: Real>(
     if l1.len() != n2 || l2.len() != n2 || l3.len() != n2 {
         return;
     }
+    let z = Point3::ZERO;
+    let jl = n.wrapping_sub(1);
     let last = [
-        l1[n - 1],
-        l2[n - 1],
-        if has3 { l3[n - 1] } else { Point3::ZERO },
+        at(l1, jl, z),
+        at(l2, jl, z),
+        if has3 { at(l3, jl, z) } else { z },
     ];
     let w11_12 = R::ratio(11, 12);
     let w1_12 = R::ratio(1, 12);
@@ -104,37 +107,40 @@ fn c2ps_in_place<R: Real>(
     let six = R::from_f64(6.0);
     let eighth = R::ratio(1, 8);
     let write45 = has3 && l4.len() == n2 && l5.len() == n2;
+    let no_root = [R::ZERO; 2];
 
     for j in (0..n).rev() {
-        let (jm, jp) = (if j == 0 { n - 1 } else { j - 1 }, (j + 1) % n);
+        let (jm, jp) = (if j == 0 { jl } else { j - 1 }, next_mod(j, n));
         let get = |l: &VecView<Point3<R>>, k: usize, i: usize| {
             if j == 0 && i == jm {
-                last[k]
+                at(&last, k, z)
             } else {
-                l[i]
+                at(l, i, z)
             }
         };
-        let r1 = refine(get(l1, 0, jm), l1[j], l1[jp]);
-        let r2 = refine(get(l2, 1, jm), l2[j], l2[jp]);
+        let r1 = refine(get(l1, 0, jm), at(l1, j, z), at(l1, jp, z));
+        let r2 = refine(get(l2, 1, jm), at(l2, j, z), at(l2, jp, z));
         let r3 = if has3 {
-            refine(get(l3, 2, jm), l3[j], l3[jp])
+            refine(get(l3, 2, jm), at(l3, j, z), at(l3, jp, z))
         } else {
-            (Point3::ZERO, Point3::ZERO)
+            (z, z)
         };
         for (jj, t1, t2, t3) in [(2 * j, r1.0, r2.0, r3.0), (2 * j + 1, r1.1, r2.1, r3.1)] {
-            let h1 = f.h1(roots[jj]);
-            let h2 = f.h2(roots[(2 * jj) % n2]);
+            let h1 = f.h1(at(roots, jj, no_root));
+            // (2·jj) mod 2n, for jj < 2n.
+            let h2 = f.h2(at(roots, add_mod(jj, jj, n2), no_root));
             if write45 {
-                l5[jj] = (t2 + t3) * half;
-                l4[jj] = (t1 + t2 * six + t3) * eighth;
+                put(l5, jj, (t2 + t3) * half);
+                put(l4, jj, (t1 + t2 * six + t3) * eighth);
             }
-            l3[jj] = (t1 + t2) * half;
-            l2[jj] = if uniform_first {
+            put(l3, jj, (t1 + t2) * half);
+            let q2 = if uniform_first {
                 (q00 + t1 * six + t2) * eighth
             } else {
                 t1 * w11_12 + t2 * w1_12 - h1 * w1_6
             };
-            l1[jj] = (q00 + f.a) * half + h1 + h2 * half;
+            put(l2, jj, q2);
+            put(l1, jj, (q00 + f.a) * half + h1 + h2 * half);
         }
     }
     *pole = q00 * R::ratio(3, 4) + f.a * R::ratio(1, 4);

@@ -6,6 +6,7 @@
 //! one rounding per level, not per entry. Storage: `2·CAP` scalars.
 
 use crate::error::Error;
+use crate::polar::index::{at, put};
 use crate::real::Real;
 use heapless::{Vec, VecView};
 
@@ -93,9 +94,9 @@ fn fill<R: Real>(ring: &mut VecView<[R; 2]>, n: usize, w: (f64, f64)) -> Result<
         })?;
     let (mut c, mut s) = (1.0f64, 0.0f64);
     for j in 0..=n / 2 {
-        ring[j] = [R::from_f64(c), R::from_f64(s)];
+        put(ring, j, [R::from_f64(c), R::from_f64(s)]);
         if j > 0 {
-            ring[n - j] = [R::from_f64(c), R::from_f64(-s)];
+            put(ring, n - j, [R::from_f64(c), R::from_f64(-s)]);
         }
         let c2 = c * w.0 - s * w.1;
         s = s * w.0 + c * w.1;
@@ -121,9 +122,9 @@ fn double<R: Real>(ring: &mut VecView<[R; 2]>, w: (f64, f64)) -> Result<(f64, f6
             capacity: ring.capacity(),
         })?;
     for j in (0..n).rev() {
-        let [c, s] = ring[j];
-        ring[2 * j] = [c, s];
-        ring[2 * j + 1] = [c * hc - s * hs, s * hc + c * hs];
+        let [c, s] = at(ring, j, [R::ZERO; 2]);
+        put(ring, 2 * j, [c, s]);
+        put(ring, 2 * j + 1, [c * hc - s * hs, s * hc + c * hs]);
     }
     Ok(half)
 }
