@@ -128,8 +128,17 @@ impl Source {
     }
 }
 
-/// Parses an input text named `name`.
+/// Parses an input text named `name`: first as JSON of any shape (syntax
+/// errors are [`CliError::MalformedJson`], also when a wrong shape would be
+/// seen first), then into [`Input`] ([`CliError::Schema`]). Both messages carry
+/// serde_json's line and column.
 pub fn parse(name: &str, text: &str) -> Result<Input, CliError> {
+    if let Err(e) = serde_json::from_str::<serde::de::IgnoredAny>(text) {
+        return Err(CliError::MalformedJson {
+            source: name.to_string(),
+            message: e.to_string(),
+        });
+    }
     serde_json::from_str::<Input>(text).map_err(|e| {
         let message = e.to_string();
         match e.classify() {

@@ -60,10 +60,17 @@ fn usage(e: clap::Error) -> ExitCode {
             ExitCode::from(EXIT_FAILURE as u8)
         }
         _ => {
+            // clap's message runs up to the first blank line (then usage and
+            // tips follow); fold it into one line.
             let rendered = e.render().to_string();
-            let first = rendered.lines().next().unwrap_or("error: bad command line");
-            let first = first.strip_prefix("error: ").unwrap_or(first);
-            let err = CliError::Usage(format!("{first} (see 'capdiv --help')"));
+            let message: Vec<&str> = rendered
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            let message = message.join(" ");
+            let message = message.strip_prefix("error: ").unwrap_or(&message);
+            let err = CliError::Usage(format!("{message} (see 'capdiv --help')"));
             eprintln!("{}", err.line());
             ExitCode::from(EXIT_FAILURE as u8)
         }

@@ -39,7 +39,11 @@ fn rts_keeps_the_valence() {
     let dir = tempdir();
     let (pole, links) = config(7, 5, 3);
     let file = write_json(dir.path(), "in.json", &polar_json(pole, &links));
-    let out = capdiv(&["refine", "--scheme", "rts", "--steps", "4", s(&file)], None).ok_json();
+    let out = capdiv(
+        &["refine", "--scheme", "rts", "--steps", "4", s(&file)],
+        None,
+    )
+    .ok_json();
     let (_, got) = parse_polar(&out);
     assert_eq!(got.len(), 5);
     assert!(got.iter().all(|l| l.len() == 7));
@@ -99,7 +103,11 @@ fn f32_output_equals_the_kernel_in_f32() {
     let dir = tempdir();
     let (pole, links) = config(5, 5, 9);
     let file = write_json(dir.path(), "in.json", &polar_json(pole, &links));
-    let out = capdiv(&["refine", "--precision", "f32", "--steps", "3", s(&file)], None).ok_json();
+    let out = capdiv(
+        &["refine", "--precision", "f32", "--steps", "3", s(&file)],
+        None,
+    )
+    .ok_json();
     let (gp, gl) = parse_polar(&out);
     let p32 = pole.map(|c| c as f32);
     let l32: Vec<Vec<[f32; 3]>> = links
@@ -139,10 +147,21 @@ fn output_is_valid_input_and_steps_compose() {
 
     // RTS: three steps = two steps, printed, read back, one more step. The
     // state (pole, links 1..5, valence) is all there is, so this is exact.
-    let two = capdiv(&["refine", "--scheme", "rts", "--steps", "2", s(&file)], None);
+    let two = capdiv(
+        &["refine", "--scheme", "rts", "--steps", "2", s(&file)],
+        None,
+    );
     let mid = write_json(dir.path(), "mid.json", &two.ok_json());
-    let a = capdiv(&["refine", "--scheme", "rts", "--steps", "1", s(&mid)], None).ok_json();
-    let b = capdiv(&["refine", "--scheme", "rts", "--steps", "3", s(&file)], None).ok_json();
+    let a = capdiv(
+        &["refine", "--scheme", "rts", "--steps", "1", s(&mid)],
+        None,
+    )
+    .ok_json();
+    let b = capdiv(
+        &["refine", "--scheme", "rts", "--steps", "3", s(&file)],
+        None,
+    )
+    .ok_json();
     assert_eq!(a, b);
 
     // C²PS: steps after the first use rules (1)–(3) (`plain`); the roots of
@@ -151,7 +170,11 @@ fn output_is_valid_input_and_steps_compose() {
     let two = capdiv(&["refine", "--steps", "2", s(&file)], None);
     let mid = write_json(dir.path(), "mid.json", &two.ok_json());
     let (ap, al) = parse_polar(
-        &capdiv(&["refine", "--first-step", "plain", "--steps", "2", s(&mid)], None).ok_json(),
+        &capdiv(
+            &["refine", "--first-step", "plain", "--steps", "2", s(&mid)],
+            None,
+        )
+        .ok_json(),
     );
     let (bp, bl) = parse_polar(&capdiv(&["refine", "--steps", "4", s(&file)], None).ok_json());
     assert!(diff(&ap, &bp) <= tol);

@@ -82,7 +82,9 @@ pub fn s(p: &Path) -> &str {
 pub struct Lcg(u64);
 impl Lcg {
     pub fn new(seed: u64) -> Self {
-        Lcg(seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407))
+        Lcg(seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407))
     }
     pub fn next(&mut self) -> f64 {
         self.0 = self
@@ -96,7 +98,7 @@ impl Lcg {
 /// A polar configuration of valence `n` with `k` links: link `i` near the
 /// circle of radius `i`, counter-clockwise, with a bump and noise of size
 /// `0.1` so that nothing is symmetric.
-pub fn config(n: usize, k: usize, seed: u64) -> (([f64; 3]), Vec<Vec<[f64; 3]>>) {
+pub fn config(n: usize, k: usize, seed: u64) -> ([f64; 3], Vec<Vec<[f64; 3]>>) {
     let mut rng = Lcg::new(seed);
     let pole = [0.1 * rng.next(), 0.1 * rng.next(), 0.2 + 0.1 * rng.next()];
     let links = (1..=k)

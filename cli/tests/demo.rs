@@ -1,0 +1,92 @@
+//! `capdiv demo`: runs, writes its OBJ and JSON files into the directory it is
+//! given (creating it), and the files are usable.
+
+mod common;
+
+use common::*;
+
+const SAMPLES: [&str; 3] = ["paraboloid", "saddle", "sphere-n48"];
+
+#[test]
+fn demo_writes_its_files_and_summary() {
+    let dir = tempdir();
+    let out = dir.path().join("nested/out");
+    let run = capdiv(&["demo", "--out", s(&out)], None);
+    run.assert_ok();
+    let text = run.stdout_str();
+    for name in SAMPLES {
+        assert!(text.contains(&format!("{name}: ")), "summary lacks {name}");
+    }
+    for label in [
+        "limit point",
+        "Gaussian curvature",
+        "mean curvature",
+        "patches",
+        "total time",
+    ] {
+        assert!(text.contains(label), "summary lacks {label}");
+    }
+
+    // Exactly the 6 files, no temporary file left behind.
+    let mut files: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    files.sort();
+    let mut want: Vec<String> = SAMPLES
+        .iter()
+        .flat_map(|n| [format!("{n}.json"), format!("{n}.obj")])
+        .collect();
+    want.sort();
+    assert_eq!(files, want);
+
+    for name in SAMPLES {
+        // OBJ: v/vn/f lines, every face index refers to an existing vertex.
+        let obj = std::fs::read_to_string(out.join(format!("{name}.obj"))).unwrap();
+        let v = obj.lines().filter(|l| l.starts_with("v ")).count();
+        let vn = obj.lines().filter(|l| l.starts_with("vn ")).count();
+        assert!(v > 0 && v == vn, "{name}: {v} v, {vn} vn");
+        let mut faces = 0;
+        for l in obj.lines().filter(|l| l.starts_with("f ")) {
+            faces += 1;
+            for c in l.split_whitespace().skip(1) {
+                let i: usize = c.split("//").next().unwrap().parse().unwrap();
+                assert!(i >= 1 && i <= v, "{name}: face index {i} of {v}");
+            }
+        }
+        assert!(faces > 0);
+        // 5×5 vertices and 4×4 quads per patch.
+        assert_eq!(v * 16, faces * 25, "{name}");
+        // JSON: a valid input of the other commands.
+        let json = out.join(format!("{name}.json"));
+        capdiv(&["pole", s(&json)], None).ok_json();
+    }
+
+    // The paraboloid z = x² + y² is reproduced: K = 4, H = 2 (see
+    // tests/pole.rs for the derivation).
+    let pole = capdiv(&["pole", s(&out.join("paraboloid.json"))], None).ok_json();
+    let k = pole["gaussian_curvature"].as_f64().unwrap();
+    let h = pole["mean_curvature"].as_f64().unwrap();
+    assert!(
+        (k - 4.0).abs() < 1e-12 && (h - 2.0).abs() < 1e-12,
+        "K={k} H={h}"
+    );
+
+    // A second run replaces the files in place.
+    let again = capdiv(&["demo", "--out", s(&out)], None);
+    again.assert_ok();
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 6);
+}
+
+#[test]
+fn demo_into_an_unwritable_place_fails_cleanly() {
+    let dir = tempdir();
+    let file = dir.path().join("a-file");
+    std::fs::write(&file, b"x").unwrap();
+    // --out names a regular file: the directory cannot be created.
+    let run = capdiv(&["demo", "--out", s(&file)], None);
+    assert_eq!(run.code, Some(2));
+    assert!(run.stdout.is_empty());
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert_eq!(std::fs::read(&file).unwrap(), b"x");
+}
