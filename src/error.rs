@@ -64,6 +64,9 @@ pub enum Error {
     TableSymmetry,
     /// A user-supplied EG rule table has rows whose weights do not sum correctly.
     TableRowSum,
+    /// A user-supplied EG rule table's subdominant eigenvalue is not within
+    /// 10⁻³ of Catmull-Clark's (spec EG.md §8).
+    TableSpectrum,
 }
 
 impl core::fmt::Display for Error {
@@ -96,6 +99,9 @@ impl core::fmt::Display for Error {
             Error::TableShape => write!(f, "rule table has the wrong shape"),
             Error::TableSymmetry => write!(f, "rule table violates the EG symmetries"),
             Error::TableRowSum => write!(f, "rule table rows do not sum as required"),
+            Error::TableSpectrum => {
+                write!(f, "rule table's subdominant eigenvalue is not Catmull-Clark's")
+            }
         }
     }
 }

@@ -4,7 +4,7 @@
 //!
 //! - [`polar`]: C²PS, bi-3 C² polar subdivision (spec `C2PS.md`) — caps around
 //!   polar vertices; the valence doubles every step.
-//! - `eg`: Evolving Guide subdivision (spec `EG.md`) — bi-4 caps around
+//! - [`eg`]: Evolving Guide subdivision (spec `EG.md`) — bi-4 caps around
 //!   extraordinary Catmull-Clark nodes.
 //!
 //! Everything is generic over [`Real`] (`f32`, `f64`), stored in fixed capacity
@@ -15,6 +15,7 @@
 #![warn(missing_docs)]
 
 pub mod bezier;
+pub mod eg;
 pub mod error;
 pub mod point;
 pub mod polar;
@@ -22,6 +23,7 @@ pub mod real;
 pub mod trig;
 
 pub use bezier::{BicubicPatch, BiquarticPatch, PatchPoint, TensorPatch};
+pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;
 pub use point::Point3;
 pub use polar::{FirstStep, OuterRegion, PolarNet, PoleGeometry, PoleJet};

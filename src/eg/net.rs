@@ -1,0 +1,303 @@
+//! The two input nets of EG (spec EG.md §1, §2) in fixed capacity, and the
+//! conversions between them: degree raising R (§3) and the limit point `c0`
+//! (§4, formulas (3) and (4)).
+//!
+//! Memory: a [`DNet`] holds `12·MAX_VALENCE + 1` points (2.9 KiB for `f64`,
+//! 1.5 KiB for `f32`), a [`CNet`] `6·MAX_VALENCE + 1`; both independent of the
+//! valence actually used.
+
+use super::layout::{Term, CENTER, RAISE};
+use super::MAX_VALENCE;
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+use core::num::NonZeroUsize;
+use heapless::Vec;
+
+/// Nodes per sector of a c-net (§1).
+pub const C_SECTOR: usize = 6;
+/// Nodes per sector of a d-net (§2).
+pub const D_SECTOR: usize = 12;
+
+/// One c-net sector, in the §1 order `(1,0) (2,0) (1,1) (2,1) (1,2) (2,2)`.
+pub type CSector<R> = [Point3<R>; C_SECTOR];
+/// One d-net sector, in the §2 order `00 10 20 30 01 11 21 31 02 12 22 32`
+/// (`d_ij` at index `i + 4j`).
+pub type DSector<R> = [Point3<R>; D_SECTOR];
+
+/// Validates a valence for EG: 3..=[`MAX_VALENCE`].
+pub(crate) fn check_valence(n: usize) -> Result<(), Error> {
+    if n < 3 {
+        Err(Error::ValenceTooSmall { valence: n })
+    } else if n > MAX_VALENCE {
+        Err(Error::ValenceUnsupported { valence: n })
+    } else {
+        Ok(())
+    }
+}
+
+/// Splits `nodes` into `per`-point sectors; `len` must be a positive multiple.
+fn sector_count(len: usize, per: usize) -> Result<usize, Error> {
+    if !len.is_multiple_of(per) {
+        return Err(Error::WrongLength {
+            expected: (len / per + 1) * per,
+            found: len,
+        });
+    }
+    let n = len / per;
+    check_valence(n)?;
+    Ok(n)
+}
+
+fn finite<R: Real>(p: &[R; 3]) -> bool {
+    p.iter().all(|c| c.is_finite())
+}
+
+/// Sector `s + ds` (mod `n`) of `sectors`.
+#[inline]
+pub(crate) fn sector_at<T>(sectors: &[T], s: usize, ds: i8) -> Result<&T, Error> {
+    let n = NonZeroUsize::new(sectors.len()).ok_or(Error::ValenceTooSmall { valence: 0 })?;
+    // s < n ≤ 10 and ds ≥ −8: no wrap-around in practice; wrapping keeps it panic-free.
+    let k = (s.wrapping_add(2 * n.get())).wrapping_add_signed(isize::from(ds)) % n;
+    sectors.get(k).ok_or(Error::OutOfDomain)
+}
+
+/// A Catmull-Clark c-net (§1): center `e` of valence `n ∈ 3..=10` and `n`
+/// counter-clockwise sectors of 6 nodes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CNet<R> {
+    center: Point3<R>,
+    sectors: Vec<CSector<R>, MAX_VALENCE>,
+}
+
+impl<R: Real> CNet<R> {
+    /// A c-net from its center and `6n` nodes, sector by sector in the §1
+    /// order. Errors, in this order: [`Error::WrongLength`] (not a multiple of
+    /// 6), [`Error::ValenceTooSmall`] (`n < 3`), [`Error::ValenceUnsupported`]
+    /// (`n > 10`), [`Error::NonFinite`].
+    pub fn new(center: [R; 3], nodes: &[[R; 3]]) -> Result<Self, Error> {
+        sector_count(nodes.len(), C_SECTOR)?;
+        let (chunks, _) = nodes.as_chunks::<C_SECTOR>();
+        Self::from_sectors(center, chunks)
+    }
+
+    /// A c-net from its center and `n` sectors of 6 nodes (§1 order).
+    /// Errors as [`CNet::new`].
+    pub fn from_sectors(center: [R; 3], sectors: &[[[R; 3]; C_SECTOR]]) -> Result<Self, Error> {
+        check_valence(sectors.len())?;
+        if !finite(&center) || !sectors.iter().flatten().all(finite) {
+            return Err(Error::NonFinite);
+        }
+        let mut out = Vec::new();
+        for s in sectors {
+            out.push(s.map(Point3))
+                .map_err(|_| Error::ValenceUnsupported {
+                    valence: sectors.len(),
+                })?;
+        }
+        Ok(CNet {
+            center: Point3(center),
+            sectors: out,
+        })
+    }
+
+    /// The valence `n`.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.sectors.len()
+    }
+    /// The extraordinary node `e`.
+    #[inline]
+    pub fn center(&self) -> Point3<R> {
+        self.center
+    }
+    /// Sector `s` (`s < n`), or `None`.
+    #[inline]
+    pub fn sector(&self, s: usize) -> Option<&CSector<R>> {
+        self.sectors.get(s)
+    }
+    /// All sectors.
+    #[inline]
+    pub fn sectors(&self) -> &[CSector<R>] {
+        &self.sectors
+    }
+
+    /// Node `(x, y)` of sector `s` (c-units, any frame reachable by §1), or the center.
+    pub(crate) fn node(&self, s: usize, ds: i8, node: u8) -> Result<Point3<R>, Error> {
+        if node == CENTER {
+            return Ok(self.center);
+        }
+        let sec = sector_at(&self.sectors, s, ds)?;
+        sec.get(usize::from(node))
+            .copied()
+            .ok_or(Error::OutOfDomain)
+    }
+
+    /// The limit point `c0` by formula (3) (§4): the Catmull-Clark limit point,
+    /// corrected for n = 3.
+    pub fn limit(&self) -> Point3<R> {
+        let n = self.valence();
+        // n ≠ 3: e weighs n/(n+5); n = 3: 11/32. Written as c0 = e + Σ w (c − e),
+        // exact because the weights sum to 1.
+        let (w6, w5) = if n == 3 {
+            (1.0 / 6.0, 5.0 / 96.0)
+        } else {
+            let nf = n as f64;
+            (4.0 / (nf * (nf + 5.0)), 1.0 / (nf * (nf + 5.0)))
+        };
+        let e = self.center;
+        let mut acc = Point3::ZERO;
+        for [c6, _, c5, ..] in self.sectors.iter() {
+            acc += (*c6 - e) * R::from_f64(w6) + (*c5 - e) * R::from_f64(w5);
+        }
+        e + acc
+    }
+
+    /// The d-net `R c` (§3) with `c0` by (3).
+    pub fn to_dnet(&self) -> DNet<R> {
+        let e = self.center;
+        let mut sectors: Vec<DSector<R>, MAX_VALENCE> = Vec::new();
+        for s in 0..self.valence() {
+            let mut d = [e; D_SECTOR];
+            for (out, stencil) in d.iter_mut().zip(RAISE.iter()) {
+                *out = e + self.apply(s, stencil);
+            }
+            // Cannot fail: as many sectors as the c-net, which fits.
+            let _ = sectors.push(d);
+        }
+        DNet {
+            c0: self.limit(),
+            sectors,
+        }
+    }
+
+    /// `Σ w/144 (c − e)` over a degree-raising stencil.
+    fn apply(&self, s: usize, stencil: &[Term; 9]) -> Point3<R> {
+        let e = self.center;
+        let mut acc = Point3::ZERO;
+        for t in stencil.iter().filter(|t| t.w != 0) {
+            // The stencils only read sectors s..s+2 and the center (layout tests).
+            if let Ok(c) = self.node(s, t.ds, t.node) {
+                acc += (c - e) * R::ratio(i32::from(t.w), 144);
+            }
+        }
+        acc
+    }
+}
+
+/// A d-net (§2): `n ∈ 3..=10` sectors of 12 bi-4 C² spline nodes, and the
+/// limit point `c0`, fixed for all steps (§4).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DNet<R> {
+    pub(crate) c0: Point3<R>,
+    pub(crate) sectors: Vec<DSector<R>, MAX_VALENCE>,
+}
+
+impl<R: Real> DNet<R> {
+    /// A d-net from `12n` nodes, sector by sector in the §2 order. `c0`: the
+    /// limit point if known, else computed by formula (4).
+    /// Errors, in this order: [`Error::WrongLength`] (not a multiple of 12),
+    /// [`Error::ValenceTooSmall`], [`Error::ValenceUnsupported`], [`Error::NonFinite`].
+    pub fn new(nodes: &[[R; 3]], c0: Option<[R; 3]>) -> Result<Self, Error> {
+        sector_count(nodes.len(), D_SECTOR)?;
+        let (chunks, _) = nodes.as_chunks::<D_SECTOR>();
+        Self::from_sectors(chunks, c0)
+    }
+
+    /// A d-net from `n` sectors of 12 nodes; `c0` as in [`DNet::new`].
+    pub fn from_sectors(sectors: &[[[R; 3]; D_SECTOR]], c0: Option<[R; 3]>) -> Result<Self, Error> {
+        check_valence(sectors.len())?;
+        if !sectors.iter().flatten().all(finite) || !c0.as_ref().is_none_or(finite) {
+            return Err(Error::NonFinite);
+        }
+        let mut out = Vec::new();
+        for s in sectors {
+            out.push(s.map(Point3))
+                .map_err(|_| Error::ValenceUnsupported {
+                    valence: sectors.len(),
+                })?;
+        }
+        let mut net = DNet {
+            c0: Point3::ZERO,
+            sectors: out,
+        };
+        net.c0 = match c0 {
+            Some(p) => Point3(p),
+            None => net.fitted_limit(),
+        };
+        if !net.c0.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        Ok(net)
+    }
+
+    /// The valence `n`.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.sectors.len()
+    }
+    /// The limit point `c0` (fixed by construction, unchanged by every step).
+    #[inline]
+    pub fn c0(&self) -> Point3<R> {
+        self.c0
+    }
+    /// Sector `s` (`s < n`), or `None`.
+    #[inline]
+    pub fn sector(&self, s: usize) -> Option<&DSector<R>> {
+        self.sectors.get(s)
+    }
+    /// All sectors.
+    #[inline]
+    pub fn sectors(&self) -> &[DSector<R>] {
+        &self.sectors
+    }
+    /// Node `d_ij` of sector `s` (`i ≤ 3`, `j ≤ 2`), or `None`.
+    #[inline]
+    pub fn node(&self, s: usize, i: usize, j: usize) -> Option<Point3<R>> {
+        if i > 3 || j > 2 {
+            return None;
+        }
+        self.sectors.get(s)?.get(i + 4 * j).copied()
+    }
+    /// `true` when every node and `c0` are finite.
+    pub fn is_finite(&self) -> bool {
+        self.c0.is_finite() && self.sectors.iter().flatten().all(|p| p.is_finite())
+    }
+
+    /// The limit point fitted to this d-net by formula (4) (§4). For a d-net
+    /// made by [`CNet::to_dnet`] it equals (3) of that c-net (up to rounding).
+    pub fn fitted_limit(&self) -> Point3<R> {
+        let w = limit_weights(self.valence());
+        let origin = self.sectors.first().map(|s| s[10]).unwrap_or(Point3::ZERO);
+        let mut acc = Point3::ZERO;
+        for sec in self.sectors.iter() {
+            for (p, wk) in sec.iter().zip(w.iter()) {
+                acc += (*p - origin) * *wk;
+            }
+        }
+        origin + acc
+    }
+}
+
+/// The per-sector weights `e_ij / γ_n` of formula (4), node order `i + 4j`.
+fn limit_weights<R: Real>(n: usize) -> [R; D_SECTOR] {
+    let nn = n as i64;
+    let (g, e00, e20, e22, e30, e31, e32) = if n == 3 {
+        (93_120, 11, -73, 10_643, -66, 396, 19_062)
+    } else {
+        let e30 = 336 * (153 * nn - 448);
+        (
+            178_480 * nn * (nn + 5),
+            2587 * nn - 8377,
+            19_339 * nn - 53_929,
+            157_051 * nn + 50_279,
+            e30,
+            -6 * e30,
+            48 * (8483 * nn - 5008),
+        )
+    };
+    let (e10, e11, e21) = (-6 * e00, 36 * e00, -6 * e20);
+    // 00 10 20 30 01 11 21 31 02 12 22 32
+    let e: [i64; D_SECTOR] = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
+    e.map(|x| R::from_f64(x as f64 / g as f64))
+}

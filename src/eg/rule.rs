@@ -1,0 +1,297 @@
+//! EG rule tables (spec EG.md §6, §7): the five listed arrays, their expansion
+//! by the §6 symmetries, and the checks a caller's table must pass.
+
+use super::net::check_valence;
+use super::spectrum;
+use super::tables::{self, Row};
+use crate::error::Error;
+
+/// Scale of the tabulated weights: an entry `a` means `a / 10⁵` (§6).
+pub const WEIGHT_SCALE: i32 = 100_000;
+
+/// The six inner new nodes `d̃_hk` of a sector that the EG rule computes (§6).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum InnerNode {
+    /// `d̃₁₁` (array A11).
+    D11,
+    /// `d̃₂₁` (array A21).
+    D21,
+    /// `d̃₃₁` (array A31), on the sector-separating spoke.
+    D31,
+    /// `d̃₁₂` (from A21 by the diagonal symmetry).
+    D12,
+    /// `d̃₂₂` (array A22).
+    D22,
+    /// `d̃₃₂` (array A32), on the sector-separating spoke.
+    D32,
+}
+
+impl InnerNode {
+    /// All six, in the order 11 21 31 12 22 32.
+    pub const ALL: [InnerNode; 6] = [
+        InnerNode::D11,
+        InnerNode::D21,
+        InnerNode::D31,
+        InnerNode::D12,
+        InnerNode::D22,
+        InnerNode::D32,
+    ];
+    /// `(h, k)`.
+    pub const fn hk(self) -> (usize, usize) {
+        match self {
+            InnerNode::D11 => (1, 1),
+            InnerNode::D21 => (2, 1),
+            InnerNode::D31 => (3, 1),
+            InnerNode::D12 => (1, 2),
+            InnerNode::D22 => (2, 2),
+            InnerNode::D32 => (3, 2),
+        }
+    }
+    /// Index `h + 4k` in a d-net sector.
+    pub const fn index(self) -> usize {
+        let (h, k) = self.hk();
+        h + 4 * k
+    }
+}
+
+/// Which §6 symmetry relates the rows of a node's rule.
+#[derive(Clone, Copy)]
+enum Symmetry {
+    /// A21: all rows listed.
+    None,
+    /// d̃₁₂ from A21: `a_ij^{r,12} = a_ji^{−r,21}` (i ≤ 2), `a_3j^{r,12} = a_3j^{−r−1,21}`.
+    FromTwentyOne,
+    /// A11, A22: `a_ij^r = a_ji^{−r}` (i ≤ 2), `a_3j^r = a_3j^{−r−1}`.
+    Diagonal,
+    /// A31, A32: `a_ij^r = a_ji^{1−r}` (i ≤ 2), `a_3j^r = a_3j^{−r}`.
+    Spoke,
+}
+
+/// `v mod n` for a signed `v`, `n ≥ 1`.
+fn wrap(v: isize, n: usize) -> usize {
+    let n = n as isize;
+    v.checked_rem_euclid(n).unwrap_or(0) as usize
+}
+
+/// The symmetric image `(r', column')` of entry `(r, column)`.
+fn image(sym: Symmetry, n: usize, r: usize, col: usize) -> (usize, usize) {
+    let (i, j) = (col % 4, col / 4);
+    let r = r as isize;
+    match sym {
+        Symmetry::None => (r as usize, col),
+        Symmetry::FromTwentyOne | Symmetry::Diagonal => {
+            if i <= 2 {
+                (wrap(-r, n), j + 4 * i)
+            } else {
+                (wrap(-r - 1, n), col)
+            }
+        }
+        Symmetry::Spoke => {
+            if i <= 2 {
+                (wrap(1 - r, n), j + 4 * i)
+            } else {
+                (wrap(-r, n), col)
+            }
+        }
+    }
+}
+
+/// An EG rule table for one valence: the five arrays of §7 in the spec's
+/// format (rows of 12 integers ×10⁵, only the listed rows), borrowed.
+///
+/// Built-in tables (n = 3, 5) come from [`RuleTable::builtin`]; any other
+/// table goes through [`RuleTable::new`], which checks it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RuleTable<'a> {
+    valence: usize,
+    a11: &'a [Row],
+    a22: &'a [Row],
+    a21: &'a [Row],
+    a31: &'a [Row],
+    a32: &'a [Row],
+}
+
+impl RuleTable<'static> {
+    /// The published table of valence `n` (§7): `Some` for n = 3 and 5.
+    /// n = 4 needs none (regular); n = 6..10 are not published in usable form.
+    pub fn builtin(n: usize) -> Option<Self> {
+        match n {
+            3 => Some(RuleTable {
+                valence: 3,
+                a11: &tables::A11_3,
+                a22: &tables::A22_3,
+                a21: &tables::A21_3,
+                a31: &tables::A31_3,
+                a32: &tables::A32_3,
+            }),
+            5 => Some(RuleTable {
+                valence: 5,
+                a11: &tables::A11_5,
+                a22: &tables::A22_5,
+                a21: &tables::A21_5,
+                a31: &tables::A31_5,
+                a32: &tables::A32_5,
+            }),
+            _ => None,
+        }
+    }
+}
+
+impl<'a> RuleTable<'a> {
+    /// A caller's table for valence `n`, in the §7 format: A11 and A22 with
+    /// `⌊n/2⌋+1` rows, A21 with `n`, A31 and A32 with `⌊(n+1)/2⌋+1`.
+    ///
+    /// Checks, in this order:
+    /// - [`Error::ValenceTooSmall`] / [`Error::ValenceUnsupported`]: `n ∉ 3..=10`;
+    /// - [`Error::TableShape`]: `n = 4` (regular, no EG rule), a wrong row
+    ///   count, or an entry with `|a| ≥ 10⁵` (the weights are 5-digit
+    ///   fractions of absolute value below 1, paper appendix);
+    /// - [`Error::TableSymmetry`]: two listed entries that the §6 symmetries
+    ///   identify differ;
+    /// - [`Error::TableRowSum`]: with `a0 = 1 − Σa` every row of `A_n` sums to 1,
+    ///   so `(c0, all nodes equal)` is an eigenvector of eigenvalue 1. That is
+    ///   only the limit if it is dominant (§8): rejected when the d-net does
+    ///   not contract to `c0`, i.e. the spectral radius `ρ` of `A_n` on nets
+    ///   with `c0 = 0` is `≥ 1`;
+    /// - [`Error::TableSpectrum`]: `|ρ − λ_CC(n)| > 10⁻³`, λ_CC the Catmull-Clark
+    ///   subdominant eigenvalue (§8: EG's λ is within 10⁻³ of it).
+    ///
+    /// ρ is measured by power iteration with this table's own step (96 steps
+    /// of an `f32` d-net; two d-nets on the stack).
+    pub fn new(
+        n: usize,
+        a11: &'a [Row],
+        a22: &'a [Row],
+        a21: &'a [Row],
+        a31: &'a [Row],
+        a32: &'a [Row],
+    ) -> Result<Self, Error> {
+        check_valence(n)?;
+        let t = RuleTable {
+            valence: n,
+            a11,
+            a22,
+            a21,
+            a31,
+            a32,
+        };
+        t.check_shape()?;
+        t.check_symmetry()?;
+        spectrum::check(&t)?;
+        Ok(t)
+    }
+
+    /// The valence.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.valence
+    }
+
+    /// The listed rows of a node's array (for [`InnerNode::D12`]: A21's).
+    pub fn listed(&self, node: InnerNode) -> &'a [Row] {
+        self.source(node).0
+    }
+
+    /// Rows the spec lists for a node's array at this valence.
+    pub fn listed_rows(&self, node: InnerNode) -> usize {
+        let n = self.valence;
+        match node {
+            InnerNode::D21 | InnerNode::D12 => n,
+            InnerNode::D11 | InnerNode::D22 => n / 2 + 1,
+            InnerNode::D31 | InnerNode::D32 => n.div_ceil(2) + 1,
+        }
+    }
+
+    fn source(&self, node: InnerNode) -> (&'a [Row], Symmetry) {
+        match node {
+            InnerNode::D11 => (self.a11, Symmetry::Diagonal),
+            InnerNode::D22 => (self.a22, Symmetry::Diagonal),
+            InnerNode::D21 => (self.a21, Symmetry::None),
+            InnerNode::D12 => (self.a21, Symmetry::FromTwentyOne),
+            InnerNode::D31 => (self.a31, Symmetry::Spoke),
+            InnerNode::D32 => (self.a32, Symmetry::Spoke),
+        }
+    }
+
+    /// Row `r` (`r < n`) of node's rule, expanded by the §6 symmetries:
+    /// the weights `a_ij^{r,hk}·10⁵` on sector `s + r`'s nodes. `None` for
+    /// `r ≥ n` (or a table that failed [`RuleTable::new`]'s shape check).
+    pub fn row(&self, node: InnerNode, r: usize) -> Option<Row> {
+        if r >= self.valence {
+            return None;
+        }
+        let (rows, sym) = self.source(node);
+        let listed = |r: usize| match sym {
+            Symmetry::FromTwentyOne => None,
+            _ => rows.get(r),
+        };
+        if let Some(row) = listed(r) {
+            return Some(*row);
+        }
+        let mut out = [0; 12];
+        for (col, w) in out.iter_mut().enumerate() {
+            let (r2, c2) = image(sym, self.valence, r, col);
+            *w = *rows.get(r2)?.get(c2)?;
+        }
+        Some(out)
+    }
+
+    /// The weight of `c0` in node's rule, ×10⁵: `a0 = 1 − Σ_r Σ_ij a_ij^{r,hk}`.
+    pub fn c0_weight(&self, node: InnerNode) -> Option<i32> {
+        let mut sum: i32 = 0;
+        for r in 0..self.valence {
+            // |a| < 10⁵ and 120 entries: no overflow.
+            sum = sum.checked_add(self.row(node, r)?.iter().sum::<i32>())?;
+        }
+        WEIGHT_SCALE.checked_sub(sum)
+    }
+
+    fn check_shape(&self) -> Result<(), Error> {
+        if self.valence == 4 {
+            return Err(Error::TableShape);
+        }
+        for node in [
+            InnerNode::D11,
+            InnerNode::D22,
+            InnerNode::D21,
+            InnerNode::D31,
+            InnerNode::D32,
+        ] {
+            let rows = self.listed(node);
+            if rows.len() != self.listed_rows(node) {
+                return Err(Error::TableShape);
+            }
+            if rows
+                .iter()
+                .flatten()
+                .any(|a| a.unsigned_abs() >= WEIGHT_SCALE as u32)
+            {
+                return Err(Error::TableShape);
+            }
+        }
+        Ok(())
+    }
+
+    fn check_symmetry(&self) -> Result<(), Error> {
+        for node in [
+            InnerNode::D11,
+            InnerNode::D22,
+            InnerNode::D31,
+            InnerNode::D32,
+        ] {
+            let (rows, sym) = self.source(node);
+            for (r, row) in rows.iter().enumerate() {
+                for (col, a) in row.iter().enumerate() {
+                    let (r2, c2) = image(sym, self.valence, r, col);
+                    if let Some(b) = rows.get(r2).and_then(|x| x.get(c2)) {
+                        if a != b {
+                            return Err(Error::TableSymmetry);
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,193 @@
+//! `EgSubdivision`: the state of an EG cap — the current d-net, the previous
+//! one (for the last ring, §9), the rule, the level.
+
+use super::net::{CNet, DNet};
+use super::refine::{refine, Rule};
+use super::ring::{ring_patch, PATCHES_PER_SECTOR};
+use super::rule::RuleTable;
+use crate::bezier::BiquarticPatch;
+use crate::error::Error;
+use crate::point::Point3;
+use crate::real::Real;
+
+/// An EG subdivision in progress (spec EG.md §5–§9).
+///
+/// Memory: two [`DNet`]s and a borrowed table, independent of the valence
+/// (≈ 2.9 KiB for `f32`, 5.8 KiB for `f64`). [`EgSubdivision::step`] builds
+/// the new net in one more `DNet` on the stack, so a failing step leaves the
+/// state untouched.
+#[derive(Clone, Debug)]
+pub struct EgSubdivision<'t, R> {
+    table: Option<RuleTable<'t>>,
+    prev: DNet<R>,
+    cur: DNet<R>,
+    level: u32,
+}
+
+impl<R: Real> EgSubdivision<'static, R> {
+    /// Starts from a d-net with the built-in rule of its valence: the §7
+    /// table for n = 3, 5; the regular rules for n = 4 (see
+    /// [`EgSubdivision::step`]). [`Error::ValenceUnsupported`] for n = 6..10,
+    /// whose rules must come from the caller ([`EgSubdivision::with_table`]).
+    pub fn new(net: DNet<R>) -> Result<Self, Error> {
+        let n = net.valence();
+        let table = RuleTable::builtin(n);
+        if table.is_none() && n != 4 {
+            return Err(Error::ValenceUnsupported { valence: n });
+        }
+        Ok(Self::start(net, table))
+    }
+
+    /// [`EgSubdivision::new`] of the c-net's degree-raised d-net (§3), `c0` by (3).
+    pub fn from_cnet(net: &CNet<R>) -> Result<Self, Error> {
+        Self::new(net.to_dnet())
+    }
+}
+
+impl<'t, R: Real> EgSubdivision<'t, R> {
+    /// Starts from a d-net with a checked table of the same valence
+    /// ([`RuleTable::new`] or [`RuleTable::builtin`]); [`Error::TableShape`]
+    /// when the valences differ.
+    pub fn with_table(net: DNet<R>, table: RuleTable<'t>) -> Result<Self, Error> {
+        if table.valence() != net.valence() {
+            return Err(Error::TableShape);
+        }
+        Ok(Self::start(net, Some(table)))
+    }
+
+    fn start(net: DNet<R>, table: Option<RuleTable<'t>>) -> Self {
+        EgSubdivision {
+            table,
+            prev: net.clone(),
+            cur: net,
+            level: 0,
+        }
+    }
+
+    /// One step `d → d̃` (§5, §6): outer nodes by the regular bi-4 rules, inner
+    /// nodes by the EG rule (7); `c0` is unchanged.
+    ///
+    /// Valence 4 has no EG rule: every node, inner ones included, follows the
+    /// regular rules, with the lattice node at the center (absent from the
+    /// d-net) set so that the spline's value there is `c0`. For a d-net raised
+    /// from a regular c-net this is exact bi-4 refinement of the degree-raised
+    /// bicubic, and `c0` stays its value at the center.
+    ///
+    /// [`Error::NonFinite`] if a coordinate overflows; the state is then unchanged.
+    pub fn step(&mut self) -> Result<(), Error> {
+        let rule = match &self.table {
+            Some(t) => Rule::Eg(t),
+            None => Rule::Regular,
+        };
+        let mut next = self.cur.clone();
+        refine(&self.cur, rule, &mut next)?;
+        if !next.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        self.prev = core::mem::replace(&mut self.cur, next);
+        self.level = self.level.saturating_add(1);
+        Ok(())
+    }
+
+    /// The current d-net.
+    #[inline]
+    pub fn net(&self) -> &DNet<R> {
+        &self.cur
+    }
+    /// The d-net before the last step (`None` before the first step).
+    #[inline]
+    pub fn previous(&self) -> Option<&DNet<R>> {
+        (self.level > 0).then_some(&self.prev)
+    }
+    /// The limit point `c0` (§4), fixed for all steps.
+    #[inline]
+    pub fn c0(&self) -> Point3<R> {
+        self.cur.c0
+    }
+    /// The valence.
+    #[inline]
+    pub fn valence(&self) -> usize {
+        self.cur.valence()
+    }
+    /// Steps taken.
+    #[inline]
+    pub fn level(&self) -> u32 {
+        self.level
+    }
+    /// The rule table in use (`None`: valence 4, regular rules).
+    #[inline]
+    pub fn table(&self) -> Option<&RuleTable<'t>> {
+        self.table.as_ref()
+    }
+
+    /// Patches in the last step's ring: `3n`, or 0 before the first step.
+    #[inline]
+    pub fn ring_len(&self) -> usize {
+        if self.level == 0 {
+            0
+        } else {
+            PATCHES_PER_SECTOR * self.valence()
+        }
+    }
+
+    /// Patch `k` of the last step's ring (§9): sector `k / 3`, piece `k % 3`
+    /// (0: `[½,1]×[0,½]`, 1: `[0,½]×[½,1]`, 2: `[½,1]²` of that sector, in
+    /// level-0 c-units × 2^−(level−1)). [`Error::OutOfDomain`] for `k ≥ ring_len()`.
+    pub fn ring_patch(&self, k: usize) -> Result<BiquarticPatch<R>, Error> {
+        if k >= self.ring_len() {
+            return Err(Error::OutOfDomain);
+        }
+        ring_patch(&self.prev, &self.cur, k)
+    }
+
+    /// All patches of the last step's ring, in index order.
+    pub fn ring_patches(&self) -> EgRingPatches<'_, 't, R> {
+        EgRingPatches { sub: self, next: 0 }
+    }
+}
+
+/// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
+#[derive(Clone, Debug)]
+pub struct EgRingPatches<'a, 't, R> {
+    sub: &'a EgSubdivision<'t, R>,
+    next: usize,
+}
+
+impl<R: Real> Iterator for EgRingPatches<'_, '_, R> {
+    type Item = BiquarticPatch<R>;
+    fn next(&mut self) -> Option<Self::Item> {
+        let p = self.sub.ring_patch(self.next).ok()?;
+        self.next += 1;
+        Some(p)
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.sub.ring_len().saturating_sub(self.next);
+        (left, Some(left))
+    }
+}
+
+impl<R: Real> ExactSizeIterator for EgRingPatches<'_, '_, R> {}
+
+impl<R: Real> DNet<R> {
+    /// One step of this net, returned as a new net (stateless form of
+    /// [`EgSubdivision::step`]). `table`: `None` for the built-in rule
+    /// (n = 3, 5; regular for n = 4; [`Error::ValenceUnsupported`] for 6..10),
+    /// or a checked table of the same valence ([`Error::TableShape`] otherwise).
+    pub fn refined(&self, table: Option<&RuleTable<'_>>) -> Result<DNet<R>, Error> {
+        let n = self.valence();
+        let builtin = RuleTable::builtin(n);
+        let rule = match (table, builtin.as_ref()) {
+            (Some(t), _) if t.valence() != n => return Err(Error::TableShape),
+            (Some(t), _) => Rule::Eg(t),
+            (None, Some(t)) => Rule::Eg(t),
+            (None, None) if n == 4 => Rule::Regular,
+            (None, None) => return Err(Error::ValenceUnsupported { valence: n }),
+        };
+        let mut next = self.clone();
+        refine(self, rule, &mut next)?;
+        if !next.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        Ok(next)
+    }
+}
