@@ -70,6 +70,8 @@ pub enum PatchFormat {
     Json,
     /// A Wavefront OBJ mesh tessellated from the patches.
     Obj,
+    /// A shaded PNG preview of that mesh (binary: use with `-o`).
+    Png,
 }
 
 /// Where the input comes from and where the output goes.
@@ -129,7 +131,7 @@ pub struct PatchesArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = PatchFormat::Json)]
     pub format: PatchFormat,
-    /// OBJ only: grid segments per patch side.
+    /// OBJ and PNG: grid segments per patch side.
     #[arg(long, default_value_t = 4, value_name = "G",
           value_parser = clap::value_parser!(u32).range(1..=64))]
     pub grid: u32,

@@ -12,7 +12,9 @@
 //!   memory;
 //! - [`output`]: the serialisable output types and the all-or-nothing writers
 //!   (stdout, or a file written through a temporary file and a rename);
-//! - [`obj`]: tessellation of Bézier patches into a Wavefront OBJ mesh;
+//! - [`mesh`]: tessellation of Bézier patches into a quad mesh;
+//! - [`obj`]: the mesh as Wavefront OBJ text;
+//! - [`render`]: the mesh as a shaded PNG preview;
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
 //! - [`error`]: the one-line error type (every failure exits with status 2).
 
@@ -21,8 +23,10 @@ pub mod capacity;
 pub mod commands;
 pub mod error;
 pub mod input;
+pub mod mesh;
 pub mod obj;
 pub mod output;
+pub mod render;
 pub mod samples;
 
 pub use error::CliError;

@@ -71,25 +71,25 @@ pub fn demo_samples() -> Vec<Sample> {
     vec![
         Sample {
             name: "paraboloid",
-            surface: "z = x^2 + y^2",
-            input: sample_surface(6, 7, 0.25, |x, y| x * x + y * y),
+            surface: "z = (x^2 + y^2)/2",
+            input: sample_surface(6, 7, 0.25, |x, y| 0.5 * (x * x + y * y)),
             depth: 6,
             analytic: Analytic {
-                gaussian: 4.0,
-                mean: 2.0,
+                gaussian: 1.0,
+                mean: 1.0,
             },
             note: "rotationally symmetric quadratic: reproduced exactly (C2PS.md §4)",
         },
         Sample {
             name: "saddle",
-            surface: "z = x^2 - y^2",
-            input: sample_surface(8, 5, 0.25, |x, y| x * x - y * y),
+            surface: "z = (x^2 - y^2)/2",
+            input: sample_surface(8, 5, 0.25, |x, y| 0.5 * (x * x - y * y)),
             depth: 6,
             analytic: Analytic {
-                gaussian: -4.0,
+                gaussian: -1.0,
                 mean: 0.0,
             },
-            note: "cos 2t part of link 1 enters as p4 = 3 C2: limit is 1.5 (x^2 - y^2), K = 2.25 x sampled",
+            note: "cos 2t part of link 1 enters as p4 = 3 C2: limit is 1.5 z, K = 2.25 x sampled",
         },
         Sample {
             name: "sphere-n48",

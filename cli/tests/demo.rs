@@ -27,7 +27,7 @@ fn demo_writes_its_files_and_summary() {
         assert!(text.contains(label), "summary lacks {label}");
     }
 
-    // Exactly the 6 files, no temporary file left behind.
+    // Exactly the 9 files, no temporary file left behind.
     let mut files: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
@@ -35,7 +35,7 @@ fn demo_writes_its_files_and_summary() {
     files.sort();
     let mut want: Vec<String> = SAMPLES
         .iter()
-        .flat_map(|n| [format!("{n}.json"), format!("{n}.obj")])
+        .flat_map(|n| [format!("{n}.json"), format!("{n}.obj"), format!("{n}.png")])
         .collect();
     want.sort();
     assert_eq!(files, want);
@@ -57,25 +57,31 @@ fn demo_writes_its_files_and_summary() {
         assert!(faces > 0);
         // 5×5 vertices and 4×4 quads per patch.
         assert_eq!(v * 16, faces * 25, "{name}");
+        // PNG: decodes, 800×600 RGB, and the surface covers a good part of it.
+        let png = std::fs::read(out.join(format!("{name}.png"))).unwrap();
+        let (w, h, rgb) = decode_png(&png);
+        assert_eq!((w, h), (800, 600));
+        let drawn = rgb.chunks(3).filter(|p| p != &[246, 246, 246]).count();
+        assert!(drawn > w * h / 5, "{name}: only {drawn} pixels drawn");
         // JSON: a valid input of the other commands.
         let json = out.join(format!("{name}.json"));
         capdiv(&["pole", s(&json)], None).ok_json();
     }
 
-    // The paraboloid z = x² + y² is reproduced: K = 4, H = 2 (see
+    // The paraboloid z = (x² + y²)/2 is reproduced: K = 1, H = 1 (see
     // tests/pole.rs for the derivation).
     let pole = capdiv(&["pole", s(&out.join("paraboloid.json"))], None).ok_json();
     let k = pole["gaussian_curvature"].as_f64().unwrap();
     let h = pole["mean_curvature"].as_f64().unwrap();
     assert!(
-        (k - 4.0).abs() < 1e-12 && (h - 2.0).abs() < 1e-12,
+        (k - 1.0).abs() < 1e-12 && (h - 1.0).abs() < 1e-12,
         "K={k} H={h}"
     );
 
     // A second run replaces the files in place.
     let again = capdiv(&["demo", "--out", s(&out)], None);
     again.assert_ok();
-    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 6);
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 9);
 }
 
 #[test]

@@ -237,3 +237,31 @@ fn obj_faces_turn_counter_clockwise_about_the_normals() {
         assert!(obj.vn[face[0].1 - 1][2] > 0.0, "vn points down");
     }
 }
+
+#[test]
+fn png_preview_decodes() {
+    let dir = tempdir();
+    let (pole, links) = config(5, 5, 2);
+    let file = write_json(dir.path(), "in.json", &polar_json(pole, &links));
+    let out = dir.path().join("p.png");
+    let run = capdiv(
+        &[
+            "patches",
+            "--depth",
+            "2",
+            "--format",
+            "png",
+            "-o",
+            s(&out),
+            s(&file),
+        ],
+        None,
+    );
+    run.assert_ok();
+    assert!(run.stdout.is_empty());
+    let (w, h, rgb) = decode_png(&std::fs::read(&out).unwrap());
+    assert_eq!((w, h), (800, 600));
+    assert_eq!(rgb.len(), 3 * w * h);
+    let drawn = rgb.chunks(3).filter(|p| p != &[246, 246, 246]).count();
+    assert!(drawn > w * h / 10, "only {drawn} pixels drawn");
+}

@@ -1,14 +1,15 @@
 //! `capdiv demo`: refines the built-in samples ([`crate::samples`]) with C²PS
 //! (f64, first step uniform), writes `<name>.obj` (patches through the
-//! sample's depth, tessellated) and `<name>.json` (the level-0 input, usable
-//! with the other commands) to the output directory, and prints a summary:
+//! sample's depth, tessellated), `<name>.png` (a shaded preview of that mesh,
+//! rings coloured by level) and `<name>.json` (the level-0 input, usable with
+//! the other commands) to the output directory, and prints a summary:
 //! limit point, curvature at the pole against the sampled surface's,
 //! patch counts, time taken.
 //!
 //! Each file is written atomically; the summary is printed once all samples
 //! have succeeded.
 
-use super::patches::collect;
+use super::patches::{collect, png_bytes};
 use super::pole::pole;
 use super::Outcome;
 use crate::args::DemoArgs;
@@ -59,9 +60,13 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
     let obj_path = dir.join(format!("{name}.obj"));
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.to_obj(DEMO_GRID, &title);
+    let mesh = set.to_mesh(DEMO_GRID);
+    let obj = set.to_obj(&mesh, DEMO_GRID, &title);
+    let png = png_bytes(&mesh)?;
     let compute = start.elapsed();
-    write_atomic(&obj_path, mesh.text.as_bytes())?;
+    write_atomic(&obj_path, obj.as_bytes())?;
+    let png_path = dir.join(format!("{name}.png"));
+    write_atomic(&png_path, &png)?;
     let json_path = dir.join(format!("{name}.json"));
     let mut json_input = serde_json::to_value(input).unwrap_or_default();
     if let Some(obj) = json_input.as_object_mut() {
@@ -105,17 +110,18 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     s += &w(
         "files",
         format!(
-            "{} ({} vertices, {} quads), {}",
+            "{} ({} vertices, {} quads), {}, {}",
             obj_path.display(),
-            mesh.vertices,
-            mesh.faces,
+            mesh.positions.len(),
+            mesh.quads.len(),
+            png_path.display(),
             json_path.display()
         ),
     );
     s += &w(
         "time",
         format!(
-            "{:.1} ms compute + tessellate, {:.1} ms with writing",
+            "{:.1} ms refine + tessellate + render, {:.1} ms with writing",
             compute.as_secs_f64() * 1e3,
             total.as_secs_f64() * 1e3
         ),

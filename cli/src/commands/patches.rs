@@ -16,8 +16,10 @@ use crate::args::{PatchFormat, PatchesArgs, Precision};
 use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::error::CliError;
 use crate::input::PolarInput;
-use crate::obj::{tessellate, ObjMesh};
+use crate::mesh::Mesh;
+use crate::obj::to_obj;
 use crate::output::{to_json, LeveledPatch, PatchOutput, Sink};
+use crate::render::{encode_png, render, View};
 use crate::Scalar;
 use capdiv::{FirstStep, OuterRegion, PolarNet};
 
@@ -49,14 +51,24 @@ impl<R: Scalar> PatchSet<R> {
         )
     }
 
-    /// Tessellates the patches into an OBJ mesh.
-    pub fn to_obj(&self, grid: usize, title: &str) -> ObjMesh {
+    /// Tessellates the patches, `grid` segments per side, tagged by level.
+    pub fn to_mesh(&self, grid: usize) -> Mesh<R> {
+        Mesh::from_patches(self.patches.iter().map(|p| (p.level, &p.patch)), grid)
+    }
+
+    /// OBJ text of the tessellated patches.
+    pub fn to_obj(&self, mesh: &Mesh<R>, grid: usize, title: &str) -> String {
         let header = [
             title.to_string(),
             self.describe(),
-            format!("each patch sampled on a {grid}x{grid} grid; vertices on shared patch edges are duplicated (not welded)"),
+            format!(
+                "each patch sampled on a {grid}x{grid} grid: {} vertices, {} quads; \
+                 vertices on shared patch edges are duplicated (not welded)",
+                mesh.positions.len(),
+                mesh.quads.len()
+            ),
         ];
-        tessellate(self.patches.iter().map(|p| &p.patch), grid, &header)
+        to_obj(mesh, &header)
     }
 }
 
@@ -65,8 +77,8 @@ pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
     let (name, input) = read_polar(&args.io.file)?;
     let first = args.first_step.into();
     let bytes = match args.precision {
-        Precision::F64 => format::<f64>(&collect(&name, &input, args.depth, first)?, args, &name),
-        Precision::F32 => format::<f32>(&collect(&name, &input, args.depth, first)?, args, &name),
+        Precision::F64 => format::<f64>(&collect(&name, &input, args.depth, first)?, args, &name)?,
+        Precision::F32 => format::<f32>(&collect(&name, &input, args.depth, first)?, args, &name)?,
     };
     Ok(Outcome {
         bytes,
@@ -74,8 +86,13 @@ pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
     })
 }
 
-fn format<R: Scalar>(set: &PatchSet<R>, args: &PatchesArgs, name: &str) -> Vec<u8> {
-    match args.format {
+fn format<R: Scalar>(
+    set: &PatchSet<R>,
+    args: &PatchesArgs,
+    name: &str,
+) -> Result<Vec<u8>, CliError> {
+    let grid = args.grid as usize;
+    Ok(match args.format {
         PatchFormat::Json => {
             let out: Vec<PatchOutput<R>> = set
                 .patches
@@ -86,9 +103,18 @@ fn format<R: Scalar>(set: &PatchSet<R>, args: &PatchesArgs, name: &str) -> Vec<u
         }
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);
-            set.to_obj(args.grid as usize, &title).text.into_bytes()
+            set.to_obj(&set.to_mesh(grid), grid, &title).into_bytes()
         }
-    }
+        PatchFormat::Png => png_bytes(&set.to_mesh(grid))?,
+    })
+}
+
+/// The default view of a mesh as PNG bytes.
+pub fn png_bytes<R: Scalar>(mesh: &Mesh<R>) -> Result<Vec<u8>, CliError> {
+    encode_png(&render(mesh, &View::default())).map_err(|e| CliError::Io {
+        path: "<png encoder>".into(),
+        message: e.to_string(),
+    })
 }
 
 /// All patches of `input` through ring `depth`.

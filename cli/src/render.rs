@@ -1,0 +1,272 @@
+//! PNG preview of a [`Mesh`]: a small software rasteriser (orthographic view
+//! from above at an angle, z-buffer, per-pixel Lambert shading of the
+//! interpolated normals, 2×2 supersampling), encoded with the `png` crate.
+//!
+//! Quads are coloured by the level of their patch, alternating warm (even
+//! levels) and cool (odd levels), so the rings of the subdivision show; the
+//! back side is grey. Patch boundaries are drawn as thin dark lines where a
+//! patch is large enough on screen (more than [`MIN_LINE_PATCH`] pixels). Only for looking at results: no claim of accuracy.
+
+use crate::mesh::Mesh;
+use crate::Scalar;
+
+/// Camera and image size.
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    /// Image width in pixels.
+    pub width: usize,
+    /// Image height in pixels.
+    pub height: usize,
+    /// Direction to the camera around +z, degrees.
+    pub azimuth: f64,
+    /// Height of the camera above the xy-plane, degrees.
+    pub elevation: f64,
+}
+
+impl Default for View {
+    fn default() -> Self {
+        View {
+            width: 800,
+            height: 600,
+            azimuth: -60.0,
+            elevation: 50.0,
+        }
+    }
+}
+
+/// An RGB image, 8 bits per channel, rows top to bottom.
+#[derive(Clone, Debug)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// `3·width·height` bytes.
+    pub rgb: Vec<u8>,
+}
+
+/// Patches narrower than this many (output) pixels get no boundary lines.
+pub const MIN_LINE_PATCH: f64 = 8.0;
+
+/// Background colour.
+pub const BACKGROUND: [u8; 3] = [246, 246, 246];
+
+type V3 = [f64; 3];
+
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn unit(a: V3) -> Option<V3> {
+    let l = dot(a, a).sqrt();
+    (l > 0.0 && l.is_finite()).then(|| a.map(|c| c / l))
+}
+
+/// Renders `mesh` as seen from `view`.
+pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
+    const SS: usize = 2;
+    let (w, h) = (view.width.max(1) * SS, view.height.max(1) * SS);
+    let (az, el) = (view.azimuth.to_radians(), view.elevation.to_radians());
+    // `toward`: from the scene to the camera; `right`, `up`: screen axes.
+    let toward = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+    let right = unit(cross([0.0, 0.0, 1.0], toward)).unwrap_or([1.0, 0.0, 0.0]);
+    let up = cross(toward, right);
+    let light = unit([
+        toward[0] + 0.4 * right[0] + 0.6 * up[0],
+        toward[1] + 0.4 * right[1] + 0.6 * up[1],
+        toward[2] + 0.4 * right[2] + 0.6 * up[2],
+    ])
+    .unwrap_or(toward);
+
+    let pos: Vec<V3> = mesh
+        .positions
+        .iter()
+        .map(|p| p.0.map(|c| c.to_f64()))
+        .collect();
+    let nrm: Vec<V3> = mesh
+        .normals
+        .iter()
+        .map(|p| p.0.map(|c| c.to_f64()))
+        .collect();
+    // Screen coordinates before fitting, and depth (larger = nearer).
+    let proj: Vec<V3> = pos
+        .iter()
+        .map(|&p| [dot(p, right), dot(p, up), dot(p, toward)])
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in proj.iter().filter(|p| p.iter().all(|c| c.is_finite())) {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let margin = 0.05 * w.min(h) as f64;
+    let span = [(hi[0] - lo[0]).max(1e-300), (hi[1] - lo[1]).max(1e-300)];
+    let scale = ((w as f64 - 2.0 * margin) / span[0]).min((h as f64 - 2.0 * margin) / span[1]);
+    let off = [
+        0.5 * (w as f64 - scale * span[0]),
+        0.5 * (h as f64 - scale * span[1]),
+    ];
+    let screen: Vec<V3> = proj
+        .iter()
+        .map(|p| {
+            [
+                off[0] + (p[0] - lo[0]) * scale,
+                h as f64 - (off[1] + (p[1] - lo[1]) * scale),
+                p[2],
+            ]
+        })
+        .collect();
+
+    let mut depth = vec![f64::NEG_INFINITY; w * h];
+    let mut color = vec![BACKGROUND.map(f64::from); w * h];
+    for (q, &tag) in mesh.quads.iter().zip(&mesh.tags) {
+        let base = if tag % 2 == 0 {
+            [235.0, 150.0, 90.0]
+        } else {
+            [95.0, 155.0, 215.0]
+        };
+        for tri in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            let face = unit(cross(
+                sub(pos[tri[1]], pos[tri[0]]),
+                sub(pos[tri[2]], pos[tri[0]]),
+            ));
+            let Some(face) = face else { continue };
+            let s = tri.map(|i| screen[i]);
+            let area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1])
+                - (s[2][0] - s[0][0]) * (s[1][1] - s[0][1]);
+            if area.abs() < 1e-12 || !area.is_finite() {
+                continue;
+            }
+            // Screen-space gradients of u and v (constant on the triangle),
+            // for boundary lines of constant width in pixels.
+            let uv = tri.map(|i| mesh.uv.get(i).copied().unwrap_or([0.5; 2]));
+            let grad = |c: usize| {
+                let (d1, d2) = (uv[1][c] - uv[0][c], uv[2][c] - uv[0][c]);
+                let gx = (d1 * (s[2][1] - s[0][1]) - d2 * (s[1][1] - s[0][1])) / area;
+                let gy = (d2 * (s[1][0] - s[0][0]) - d1 * (s[2][0] - s[0][0])) / area;
+                (gx * gx + gy * gy).sqrt()
+            };
+            let (gu, gv) = (grad(0), grad(1));
+            let x0 = s
+                .iter()
+                .map(|p| p[0])
+                .fold(f64::INFINITY, f64::min)
+                .floor()
+                .max(0.0) as usize;
+            let x1 = (s
+                .iter()
+                .map(|p| p[0])
+                .fold(f64::NEG_INFINITY, f64::max)
+                .ceil() as usize)
+                .min(w);
+            let y0 = s
+                .iter()
+                .map(|p| p[1])
+                .fold(f64::INFINITY, f64::min)
+                .floor()
+                .max(0.0) as usize;
+            let y1 = (s
+                .iter()
+                .map(|p| p[1])
+                .fold(f64::NEG_INFINITY, f64::max)
+                .ceil() as usize)
+                .min(h);
+            for y in y0..y1 {
+                for x in x0..x1 {
+                    let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+                    let edge =
+                        |a: V3, b: V3| (b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1]);
+                    let l = [
+                        edge(s[1], s[2]) / area,
+                        edge(s[2], s[0]) / area,
+                        edge(s[0], s[1]) / area,
+                    ];
+                    if l.iter().any(|&c| c < 0.0) {
+                        continue;
+                    }
+                    let z = l[0] * s[0][2] + l[1] * s[1][2] + l[2] * s[2][2];
+                    let k = y * w + x;
+                    if z <= depth[k] {
+                        continue;
+                    }
+                    depth[k] = z;
+                    let mut n = [0.0; 3];
+                    for (c, &i) in l.iter().zip(&tri) {
+                        for d in 0..3 {
+                            n[d] += c * nrm[i][d];
+                        }
+                    }
+                    let mut n = unit(n).unwrap_or(face);
+                    let front = dot(face, toward) >= 0.0;
+                    if dot(n, toward) < 0.0 {
+                        n = n.map(|c| -c);
+                    }
+                    let shade = 0.25 + 0.75 * dot(n, light).max(0.0);
+                    let albedo = if front { base } else { [170.0, 170.0, 170.0] };
+                    // Distance to the patch boundary in (supersampled) pixels.
+                    let (u, v) = (
+                        l[0] * uv[0][0] + l[1] * uv[1][0] + l[2] * uv[2][0],
+                        l[0] * uv[0][1] + l[1] * uv[1][1] + l[2] * uv[2][1],
+                    );
+                    let line = |t: f64, g: f64| {
+                        g > 0.0
+                            && 1.0 / g > MIN_LINE_PATCH * SS as f64
+                            && t.min(1.0 - t) / g < 0.6 * SS as f64
+                    };
+                    let ink = if line(u, gu) || line(v, gv) {
+                        0.45
+                    } else {
+                        1.0
+                    };
+                    color[k] = albedo.map(|c| c * shade * ink);
+                }
+            }
+        }
+    }
+
+    let (ow, oh) = (w / SS, h / SS);
+    let mut rgb = Vec::with_capacity(3 * ow * oh);
+    for y in 0..oh {
+        for x in 0..ow {
+            let mut acc = [0.0; 3];
+            for dy in 0..SS {
+                for dx in 0..SS {
+                    let c = color[(y * SS + dy) * w + x * SS + dx];
+                    for d in 0..3 {
+                        acc[d] += c[d];
+                    }
+                }
+            }
+            rgb.extend(acc.map(|c| (c / (SS * SS) as f64).round().clamp(0.0, 255.0) as u8));
+        }
+    }
+    Image {
+        width: ow,
+        height: oh,
+        rgb,
+    }
+}
+
+/// PNG bytes of an image.
+pub fn encode_png(image: &Image) -> Result<Vec<u8>, png::EncodingError> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, image.width as u32, image.height as u32);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut writer = enc.write_header()?;
+        writer.write_image_data(&image.rgb)?;
+        writer.finish()?;
+    }
+    Ok(out)
+}
