@@ -130,7 +130,10 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
         let stored = count.min(MAX_STORED_LINKS);
         let mut links: [&[[R; 3]]; MAX_STORED_LINKS] = [&[]; MAX_STORED_LINKS];
         for (i, l) in links.iter_mut().enumerate().take(stored) {
-            *l = &pts[i * valence..(i + 1) * valence];
+            // In range: i < stored <= count = pts.len() / valence. `get` only
+            // spares the slice-index panic path (an empty link would be
+            // rejected by `new` as a length mismatch).
+            *l = pts.get(i * valence..(i + 1) * valence).unwrap_or(&[]);
         }
         Self::new(pole, &links[..stored])
     }
@@ -164,7 +167,9 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     #[inline]
     pub fn link(&self, i: usize) -> Option<&[Point3<R>]> {
         if i >= 1 && i <= self.held {
-            Some(&self.links[i - 1])
+            // held <= MAX_STORED_LINKS: `get` never fails, but spares the
+            // bounds-check panic path the optimiser cannot remove.
+            self.links.get(i - 1).map(|l| l.as_slice())
         } else {
             None
         }
