@@ -5,9 +5,14 @@
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
-/// Smooth subdivision caps: C²PS polar subdivision from the command line.
+/// The command line of `capdiv`.
 #[derive(Debug, Parser)]
-#[command(name = "capdiv", version, about, long_about = None)]
+#[command(
+    name = "capdiv",
+    version,
+    about = "Smooth subdivision caps: C²PS polar subdivision (JSON in, JSON/OBJ/PNG out)",
+    after_help = "Every failure prints one line 'error: …' on stderr and exits with status 2."
+)]
 pub struct Cli {
     /// The command to run.
     #[command(subcommand)]
@@ -21,9 +26,9 @@ pub enum Command {
     Refine(RefineArgs),
     /// Print the limit point, eigencoefficients, normal and curvatures at the pole.
     Pole(PoleArgs),
-    /// Print every Bézier patch from level 0 through ring M (JSON or OBJ).
+    /// Print every Bézier patch from level 0 through ring M (JSON, OBJ or PNG).
     Patches(PatchesArgs),
-    /// Refine built-in sample surfaces, write OBJ files and print a summary.
+    /// Refine built-in sample surfaces, write OBJ/PNG/JSON files, print a summary.
     Demo(DemoArgs),
 }
 
@@ -125,7 +130,8 @@ pub struct PoleArgs {
 /// `capdiv patches`.
 #[derive(Clone, Debug, Args)]
 pub struct PatchesArgs {
-    /// Deepest ring level M.
+    /// Deepest ring level M (a ring needs 5 links: with 2 input links rings
+    /// start at level 2, with 3 or 4 at level 1).
     #[arg(long, value_name = "M")]
     pub depth: u32,
     /// Output format.
