@@ -10,6 +10,7 @@ use std::process::Command;
 use std::time::Duration;
 
 #[path = "../../wasm/src/codes.rs"]
+#[allow(dead_code)]
 mod codes;
 
 /// The module's capacity per link (`wasm/src/lib.rs`, checked against the
@@ -92,8 +93,8 @@ fn check(text: &str) -> usize {
         let coords = field("coords");
         let refine = field("refine");
         let jet = field("jet");
-        let pole: [f64; 3] = f64s(&&pole[1..]).try_into().unwrap();
-        let coords = f64s(&&coords[1..]);
+        let pole: [f64; 3] = f64s(&pole[1..]).try_into().unwrap();
+        let coords = f64s(&coords[1..]);
         assert_eq!(coords.len(), w[5].parse::<usize>().unwrap());
         let (r, out, j, jet_out) = native(pole, &coords, valence, steps, plain);
         let wasm_r: i32 = refine[1].parse().unwrap();
