@@ -22,8 +22,9 @@ proptest! {
     /// step(A d + t) = A step(d) + t (with c0 mapped too), n = 3, 4, 5, three
     /// steps. Every new node is an affine combination (weights sum to 1 by
     /// a0 = 1 − Σa and by the regular rules), so only rounding differs: the
-    /// weights' L1 norm per step is ≤ 2.3 (n = 5's A31 row sums of |a|), three
-    /// steps and ‖A‖ ≤ 3·2 with |coords| ≤ 10 + |t| ≤ 20: ≲ 1e-12 absolute.
+    /// rows of A_n have L1 norm ≤ 1.95 (n = 5; 1.54 for n = 3), coordinates
+    /// stay ≤ 3·2·10 + 10 = 70, ≤ 61 terms per node: per step ≲ 61·70·1.1e-16
+    /// ≈ 5e-13, three steps amplified by ≤ 1.95³: ≲ 4e-12 < 1e-11.
     #[test]
     fn step_is_affine_invariant(
         n in 3usize..=5,
