@@ -162,3 +162,47 @@ fn f32_precision_agrees_with_f64() {
     let (ka, kb) = (num(&a["gaussian_curvature"]), num(&b["gaussian_curvature"]));
     assert!((ka - kb).abs() < 1e-4 * ka.abs().max(1.0), "{ka} vs {kb}");
 }
+
+/// Sampled `z = b (x² − y²)` (n ≥ 5): by hand, `C2 = (0, 0, b h²/2)` so
+/// `p4 = 3 C2 = (0, 0, 1.5 b h²)` and the limit near the pole is
+/// `z = 1.5 b (X² − Y²)`: K = −(3b)², H = 0 — not the sampled surface's
+/// K = −(2b)². The patches (geometry, not the jet) agree: on the ray τ = 0 at
+/// r = 3·2^-m (the corner u = 1, v = 0 of ring-m span-0 column 0),
+/// z / X² → 1.5 b as m grows.
+#[test]
+fn sampled_saddle_limits_to_one_and_a_half_times_the_saddle() {
+    let dir = tempdir();
+    let (n, b, h) = (8usize, 0.5, 0.25);
+    let links: Vec<Vec<[f64; 3]>> = (1..=5)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let t = std::f64::consts::TAU * j as f64 / n as f64;
+                    let r = i as f64 * h;
+                    let (x, y) = (r * t.cos(), r * t.sin());
+                    [x, y, b * (x * x - y * y)]
+                })
+                .collect()
+        })
+        .collect();
+    let file = write_json(dir.path(), "in.json", &polar_json([0.0; 3], &links));
+    let out = pole_of(s(&file));
+    assert!(
+        (num(&out["gaussian_curvature"]) + 9.0 * b * b).abs() < 1e-12,
+        "{out}"
+    );
+    assert!(num(&out["mean_curvature"]).abs() < 1e-12, "{out}");
+
+    let ps = capdiv(&["patches", "--depth", "8", s(&file)], None).ok_json();
+    let ps = ps.as_array().unwrap();
+    let mut errs = vec![];
+    for m in [4u64, 6, 8] {
+        let first = ps.iter().position(|p| p["level"] == m).unwrap();
+        let corner = p3(&ps[first]["points"][12]);
+        assert!(corner[1].abs() < 1e-12, "on the ray τ = 0");
+        errs.push((corner[2] / (corner[0] * corner[0]) - 1.5 * b).abs());
+    }
+    // o(r²) remainder: the error shrinks with r = 3·2^-m and ends small.
+    assert!(errs[0] > errs[1] && errs[1] > errs[2], "{errs:?}");
+    assert!(errs[2] < 0.01 * b, "{errs:?}");
+}
