@@ -11,6 +11,7 @@ use proptest::prelude::*;
 
 /// A patch of the assembled surface: its sector, square `[x0,x0+w]×[y0,y0+w]`
 /// in level-0 c-units of that sector, and Bézier form.
+#[allow(clippy::large_enum_variant)]
 enum Piece {
     Quartic(TensorPatch<f64, 5>),
     Cubic(TensorPatch<f64, 4>),
@@ -26,7 +27,10 @@ struct Placed {
 impl Placed {
     fn contains(&self, x: f64, y: f64) -> bool {
         let e = 1e-12;
-        x >= self.x0 - e && x <= self.x0 + self.w + e && y >= self.y0 - e && y <= self.y0 + self.w + e
+        x >= self.x0 - e
+            && x <= self.x0 + self.w + e
+            && y >= self.y0 - e
+            && y <= self.y0 + self.w + e
     }
     fn jet(&self, x: f64, y: f64) -> Jet {
         let (x, y) = (
@@ -145,7 +149,10 @@ fn rings_join_c2_n3_n4_n5_three_rings() {
         let ext = ExtNet::random(n, &mut rng, 0.4);
         let (worst, compared) = worst_c2_mismatch(&ext, 3);
         assert!(compared > 100 * n, "too few comparisons: {compared}");
-        assert!(worst < C2_TOL, "n={n}: worst relative jet mismatch {worst:e}");
+        assert!(
+            worst < C2_TOL,
+            "n={n}: worst relative jet mismatch {worst:e}"
+        );
     }
 }
 

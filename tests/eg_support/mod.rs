@@ -204,11 +204,11 @@ pub fn patch_jet<const K: usize>(
     let mut d = [[0.0; 3]; 6];
     for (slot, &(a, b)) in d.iter_mut().zip(combos.iter()) {
         let scale = w.powi(-((a + b) as i32));
-        for i in 0..K {
-            for j in 0..K {
-                let wgt = bu[a][i] * bv[b][j] * scale;
-                for c in 0..3 {
-                    slot[c] += wgt * p.points[i][j].0[c];
+        for (bi, row) in bu[a].iter().zip(p.points.iter()) {
+            for (bj, q) in bv[b].iter().zip(row.iter()) {
+                let wgt = bi * bj * scale;
+                for (o, c) in slot.iter_mut().zip(q.0.iter()) {
+                    *o += wgt * c;
                 }
             }
         }
