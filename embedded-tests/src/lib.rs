@@ -38,14 +38,13 @@ pub fn cargo_in(dir: &Path, args: &[&str]) {
     );
 }
 
-/// Builds the firmware (release) for `target` with `features` (on top of the
-/// defaults) and returns the ELF path.
-pub fn build_firmware(target: &str, features: &str) -> PathBuf {
+/// Builds the firmware (release) for `target`, with extra cargo arguments
+/// (e.g. `--no-default-features --features eg`), and returns the ELF path.
+/// Different feature sets share the path: run the ELF before the next build.
+pub fn build_firmware(target: &str, extra: &str) -> PathBuf {
     let dir = repo_root().join("firmware");
     let mut args = vec!["build", "--release", "--target", target];
-    if !features.is_empty() {
-        args.extend(["--features", features]);
-    }
+    args.extend(extra.split_whitespace());
     cargo_in(&dir, &args);
     dir.join("target")
         .join(target)

@@ -7,6 +7,7 @@
 //! A kernel error, a fault, a hang (time limit), a missing or extra line or a
 //! number outside the tolerance fails the test.
 
+use capdiv::eg::{CNet, EgSubdivision};
 use capdiv::{FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_embedded_tests::report::{parse, Entry};
 use capdiv_embedded_tests::{build_firmware, decode_defmt, qemu, run_with_limit};
@@ -17,7 +18,7 @@ use std::time::Duration;
 #[allow(dead_code)]
 mod sample;
 
-use sample::{LINKS, POLE, VALENCE};
+use sample::{EG_CENTER, EG_NODES_3, EG_NODES_5, LINKS, POLE, VALENCE};
 
 /// Generous for a run that takes well under a second; a hang ends here.
 const LIMIT: Duration = Duration::from_secs(60);
@@ -33,13 +34,31 @@ fn quarter(i: usize) -> f64 {
     i as f64 * 0.25
 }
 
+/// What one firmware build runs: the C²PS sample to `Some(depth)`, the EG samples.
+#[derive(Clone, Copy, Debug)]
+struct Workloads {
+    c2ps: Option<u32>,
+    eg: bool,
+}
+
 /// Everything the firmware reports, recomputed in f64, keyed by `Entry::id`.
-fn reference(depth: u32) -> BTreeMap<String, Entry> {
+fn reference(w: Workloads) -> BTreeMap<String, Entry> {
     let mut out = BTreeMap::new();
     let mut add = |key: &str, idx: &[usize], vals: Vec<f64>| {
         let e = Entry::new(key, idx, &vals);
         assert!(out.insert(e.id(), e).is_none(), "duplicate {key} {idx:?}");
     };
+    if let Some(depth) = w.c2ps {
+        c2ps_reference(depth, &mut add);
+    }
+    if w.eg {
+        eg_reference(&mut add);
+    }
+    out
+}
+
+/// The C²PS workload of `firmware/src/c2ps.rs` in f64.
+fn c2ps_reference(depth: u32, add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     let mut net: PolarNet<f64, CAP> = PolarNet::new(POLE, &LINKS[..5]).unwrap();
     for (k, q) in PoleJet::of(&net).p.iter().enumerate() {
         add("jet0", &[k], p(*q));
@@ -114,8 +133,45 @@ fn reference(depth: u32) -> BTreeMap<String, Entry> {
         sum += patch.position(0.5, 0.5).unwrap();
     }
     add("outersum", &[], p(sum));
-    out
 }
+
+/// The EG workload of `firmware/src/eg.rs` in f64.
+fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
+    for nodes in [&EG_NODES_3[..], &EG_NODES_5[..]] {
+        let net = CNet::new(EG_CENTER, nodes).unwrap();
+        let n = net.valence();
+        add("eglimit", &[n], p(net.limit()));
+        let mut sub = EgSubdivision::from_cnet(&net).unwrap();
+        for _ in 0..EG_STEPS {
+            sub.step().unwrap();
+        }
+        add("egc0", &[n], p(sub.c0()));
+        for s in 0..n {
+            for (i, j) in [(0, 0), (3, 0), (1, 1), (3, 2)] {
+                add("egnode", &[n, s, i, j], p(sub.net().node(s, i, j).unwrap()));
+            }
+        }
+        let len = sub.ring_len();
+        add("egringcount", &[n, len], vec![]);
+        for (k, ui, vi) in [(0, 2, 2), (1, 1, 3), (len - 1, 4, 0)] {
+            let e = sub
+                .ring_patch(k)
+                .unwrap()
+                .evaluate(quarter(ui), quarter(vi))
+                .unwrap();
+            add("egpos", &[n, k, ui, vi], p(e.position));
+            add("egnrm", &[n, k, ui, vi], p(e.normal().unwrap()));
+        }
+        let mut sum = Point3::ZERO;
+        for patch in sub.ring_patches() {
+            sum += patch.position(0.5, 0.5).unwrap();
+        }
+        add("egsum", &[n], p(sum));
+    }
+}
+
+/// EG steps the firmware applies to each sample (spec EG.md; issue 4: n = 3, 5).
+const EG_STEPS: u32 = 4;
 
 /// Unit roundoff of `f32`, `2⁻²⁴`.
 const U: f64 = 1.0 / (1u64 << 24) as f64;
@@ -142,20 +198,23 @@ fn tolerance(key: &str, reference: f64) -> f64 {
     match key {
         "curv" => 65536.0 * U * scale,
         "normal" => 1024.0 * U,
-        "ringnrm" | "outernrm" => 2048.0 * U,
+        "ringnrm" | "outernrm" | "egnrm" => 2048.0 * U,
         _ => 16.0 * U * scale,
     }
 }
 
 struct Checked {
     worst: BTreeMap<String, f64>,
+    /// Whole run: (high-water mark, stack size).
     stack: (usize, usize),
-    /// (construction, refinement and evaluation) high-water marks.
-    phases: (usize, usize),
+    /// Phase high-water marks: C²PS construction, C²PS refinement and
+    /// evaluation, EG (each 0 when not run).
+    phases: [usize; 3],
+    /// Size of the C²PS net static, 0 when not run.
     net_bytes: usize,
 }
 
-fn check_log(lines: &[String], depth: u32, cap: usize) -> Checked {
+fn check_log(lines: &[String], w: Workloads) -> Checked {
     assert_eq!(
         lines.first().map(String::as_str),
         Some("start"),
@@ -166,12 +225,13 @@ fn check_log(lines: &[String], depth: u32, cap: usize) -> Checked {
         Some("done true"),
         "the firmware did not finish cleanly:\n{lines:#?}"
     );
-    let mut expected = reference(depth);
+    let mut expected = reference(w);
     let mut worst: BTreeMap<String, f64> = BTreeMap::new();
     let mut abs_worst: BTreeMap<String, f64> = BTreeMap::new();
     let mut stack = None;
-    let mut phases = None;
+    let mut phases = [0; 3];
     let mut cfg = None;
+    let mut egcfg = Vec::new();
     let mut geometry = false;
     for line in &lines[1..lines.len() - 1] {
         if line.starts_with("geometry PoleGeometry {") {
@@ -184,8 +244,17 @@ fn check_log(lines: &[String], depth: u32, cap: usize) -> Checked {
                 stack = Some((got.idx[0], got.idx[1]));
                 continue;
             }
-            "stackphase" => {
-                phases = Some((got.idx[0], got.idx[1]));
+            "stackc2ps" => {
+                phases[0] = got.idx[0];
+                phases[1] = got.idx[1];
+                continue;
+            }
+            "stackeg" => {
+                phases[2] = got.idx[0];
+                continue;
+            }
+            "egcfg" => {
+                egcfg.push(got.idx.clone());
                 continue;
             }
             "cfg" => {
@@ -207,9 +276,8 @@ fn check_log(lines: &[String], depth: u32, cap: usize) -> Checked {
                 err <= tol,
                 "{line:?}: firmware {g} vs f64 {w}: |diff| {err:e} > tolerance {tol:e}"
             );
-            let rel = err / tol;
             let e = worst.entry(got.key.clone()).or_insert(0.0);
-            *e = e.max(rel);
+            *e = e.max(err / tol);
         }
     }
     assert!(
@@ -217,32 +285,48 @@ fn check_log(lines: &[String], depth: u32, cap: usize) -> Checked {
         "lines missing from the firmware's log: {:?}",
         expected.keys().collect::<Vec<_>>()
     );
-    assert!(geometry, "no defmt::Format line for PoleGeometry");
-    let cfg = cfg.expect("cfg line");
-    assert_eq!(cfg[..3], [VALENCE, depth as usize, cap], "cfg line");
+    for (k, v) in &abs_worst {
+        eprintln!("  {k:<11} worst |f32 - f64| = {v:.3e}");
+    }
     let stack = stack.expect("stack line");
     assert!(
         stack.0 > 0 && stack.0 < stack.1,
         "stack high-water mark {stack:?} outside (0, size): painting failed or overflowed"
     );
-    let phases = phases.expect("stackphase line");
+    let mut net_bytes = 0;
+    if let Some(depth) = w.c2ps {
+        assert!(geometry, "no defmt::Format line for PoleGeometry");
+        let cfg = cfg.expect("cfg line");
+        assert_eq!(
+            cfg[..3],
+            [VALENCE, depth as usize, VALENCE << depth],
+            "cfg line"
+        );
+        net_bytes = cfg[3];
+        assert!(phases[0] > 0 && phases[1] > 0, "no C²PS stack phases");
+    }
+    if w.eg {
+        assert_eq!(
+            egcfg.iter().map(|c| (c[0], c[1])).collect::<Vec<_>>(),
+            [(3, EG_STEPS as usize), (5, EG_STEPS as usize)],
+            "egcfg lines"
+        );
+        assert!(phases[2] > 0, "no EG stack phase");
+    }
     assert!(
-        phases.0 <= stack.0 && phases.1 <= stack.0 && phases.1 > 0,
+        phases.iter().all(|&p| p <= stack.0),
         "phase high-water marks {phases:?} exceed the whole run's {stack:?}"
     );
-    for (k, v) in &abs_worst {
-        eprintln!("  {k:<10} worst |f32 - f64| = {v:.3e}");
-    }
     Checked {
         worst,
         stack,
         phases,
-        net_bytes: cfg[3],
+        net_bytes,
     }
 }
 
-fn run_and_check(target: &str, machine: &str, cpu: Option<&str>, depth: u32) {
-    let elf = build_firmware(target, "");
+fn run_and_check(target: &str, machine: &str, cpu: Option<&str>, features: &str, w: Workloads) {
+    let elf = build_firmware(target, features);
     let run = run_with_limit(qemu(machine, cpu, &elf), LIMIT).unwrap_or_else(|e| panic!("{e}"));
     let bytes = std::fs::read(&elf).unwrap();
     let lines = decode_defmt(&bytes, &run.stdout).unwrap_or_else(|e| panic!("{e}"));
@@ -253,46 +337,67 @@ fn run_and_check(target: &str, machine: &str, cpu: Option<&str>, depth: u32) {
         run.code,
         run.stderr
     );
-    let checked = check_log(&lines, depth, VALENCE << depth);
+    let c = check_log(&lines, w);
     eprintln!(
-        "{target} on {machine}: {} lines, {:.2?}, stack high-water mark {} of {} bytes \
-         (construction {}, refinement + evaluation {}), net static {} bytes",
+        "{target} on {machine} ({w:?}): {} lines, {:.2?}, stack high-water mark {} of {} bytes \
+         (C²PS construction {}, C²PS refinement + evaluation {}, EG {}), C²PS net static {} bytes",
         lines.len(),
         run.elapsed,
-        checked.stack.0,
-        checked.stack.1,
-        checked.phases.0,
-        checked.phases.1,
-        checked.net_bytes
+        c.stack.0,
+        c.stack.1,
+        c.phases[0],
+        c.phases[1],
+        c.phases[2],
+        c.net_bytes
     );
-    for (key, r) in &checked.worst {
-        eprintln!("  {key:<10} worst |diff| / tolerance = {r:.3}");
-    }
-    if let Ok(path) = std::env::var("CAPDIV_FIRMWARE_REPORT") {
-        let text = format!(
-            "{target} {machine} stack_hwm={} stack_size={} stack_construct={} stack_refine={} net_bytes={} qemu_ms={}\n",
-            checked.stack.0,
-            checked.stack.1,
-            checked.phases.0,
-            checked.phases.1,
-            checked.net_bytes,
-            run.elapsed.as_millis()
-        );
-        let mut old = std::fs::read_to_string(&path).unwrap_or_default();
-        old.push_str(&text);
-        std::fs::write(&path, old).unwrap();
+    for (key, r) in &c.worst {
+        eprintln!("  {key:<11} worst |diff| / tolerance = {r:.3}");
     }
 }
 
-/// Cortex-M4F (FPU, `thumbv7em-none-eabihf`) on QEMU's MPS2-AN386: depth 6.
+/// Cortex-M4F (FPU, `thumbv7em-none-eabihf`) on QEMU's MPS2-AN386: C²PS to
+/// depth 6 and EG (n = 3, 5; 4 steps) in one image.
 #[test]
-fn cortex_m4_c2ps_matches_f64() {
-    run_and_check("thumbv7em-none-eabihf", "mps2-an386", Some("cortex-m4"), 6);
+fn cortex_m4_matches_f64() {
+    let w = Workloads {
+        c2ps: Some(6),
+        eg: true,
+    };
+    run_and_check(
+        "thumbv7em-none-eabihf",
+        "mps2-an386",
+        Some("cortex-m4"),
+        "",
+        w,
+    );
 }
 
 /// Cortex-M0 (no FPU: soft-float f32, `thumbv6m-none-eabi`) on QEMU's BBC
-/// micro:bit (16 KiB RAM): depth 3, same checks.
+/// micro:bit, 16 KiB RAM: C²PS (depth 3) and EG in separate images, as both
+/// do not fit the RAM together (see the size report).
 #[test]
-fn cortex_m0_c2ps_matches_f64() {
-    run_and_check("thumbv6m-none-eabi", "microbit", None, 3);
+fn cortex_m0_matches_f64() {
+    let target = "thumbv6m-none-eabi";
+    let c2ps = Workloads {
+        c2ps: Some(3),
+        eg: false,
+    };
+    run_and_check(
+        target,
+        "microbit",
+        None,
+        "--no-default-features --features c2ps",
+        c2ps,
+    );
+    let eg = Workloads {
+        c2ps: None,
+        eg: true,
+    };
+    run_and_check(
+        target,
+        "microbit",
+        None,
+        "--no-default-features --features eg",
+        eg,
+    );
 }

@@ -34,6 +34,7 @@ fn links() -> [[[f32; 3]; VALENCE]; LINKS_GIVEN] {
 }
 
 /// Runs the workload; logs as it goes.
+#[inline(never)]
 pub fn run() -> Result<(), Failure> {
     let net = build()?;
     // The construction's stack peak (its frame is gone now), then a fresh
@@ -42,7 +43,7 @@ pub fn run() -> Result<(), Failure> {
     crate::stack::repaint();
     refine_and_report(net)?;
     let (rest, _) = crate::stack::high_water_mark();
-    defmt::println!("stackphase {=usize} {=usize}", built, rest);
+    defmt::println!("stackc2ps {=usize} {=usize}", built, rest);
     Ok(())
 }
 

@@ -15,11 +15,14 @@
 
 mod logger;
 mod report;
+#[allow(dead_code)] // each workload uses its own part
 mod sample;
 mod stack;
 
 #[cfg(feature = "c2ps")]
 mod c2ps;
+#[cfg(feature = "eg")]
+mod eg;
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
@@ -27,10 +30,19 @@ use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 #[entry]
 fn main() -> ! {
     defmt::println!("start");
+    #[allow(unused_mut)]
     let mut ok = true;
     #[cfg(feature = "c2ps")]
     {
         ok &= report::outcome("c2ps", c2ps::run());
+    }
+    #[cfg(feature = "eg")]
+    {
+        // The EG workload's own peak, apart from C²PS's.
+        stack::repaint();
+        ok &= report::outcome("eg", eg::run());
+        let (used, _) = stack::high_water_mark();
+        defmt::println!("stackeg {=usize}", used);
     }
     let (hwm, size) = stack::peak();
     defmt::println!("stack {=usize} {=usize}", hwm, size);

@@ -62,8 +62,7 @@ pub fn outcome(name: &str, r: Result<(), Failure>) -> bool {
 pub enum Failure {
     /// The kernel returned an error.
     Kernel(Error),
-    /// A `singleton!` static was claimed twice.
-    #[allow(dead_code)]
+    /// A static was claimed twice.
     Reused,
 }
 
