@@ -59,3 +59,22 @@ pub fn dispatch<R: Scalar, J: NetJob<R>>(
         _ => Err(too_big(what())),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn valence_and_tiers() {
+        assert_eq!(valence_after(6, 0), Some(6));
+        assert_eq!(valence_after(6, 4), Some(96));
+        assert_eq!(valence_after(3, 63), None);
+        assert_eq!(valence_after(3, 64), None);
+        assert_eq!(valence_after(3, u32::MAX), None);
+        assert_eq!(tier_for(0), Some(1 << 10));
+        assert_eq!(tier_for(1 << 10), Some(1 << 10));
+        assert_eq!(tier_for((1 << 10) + 1), Some(1 << 14));
+        assert_eq!(tier_for(1 << 17), Some(1 << 17));
+        assert_eq!(tier_for((1 << 17) + 1), None);
+    }
+}

@@ -256,3 +256,31 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     }
     result.map_err(io_err)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::indent;
+    use serde_json::{json, Value};
+
+    #[test]
+    fn indent_keeps_the_value_and_puts_points_on_one_line() {
+        let v = json!({
+            "kind": "po[la]r \"q\" {x}",
+            "pole": [0.1, -2e-30, 3.0],
+            "links": [[[1, 2, 3], [4, 5, 6]], []],
+            "empty": {},
+            "n": 1.5
+        });
+        let compact = serde_json::to_vec(&v).unwrap();
+        let pretty = indent(&compact);
+        let text = String::from_utf8(pretty.clone()).unwrap();
+        let back: Value = serde_json::from_slice(&pretty).unwrap();
+        assert_eq!(back, v);
+        assert!(text.contains("\"pole\": [0.1, -2e-30, 3.0]"), "{text}");
+        assert!(
+            text.contains("      [1, 2, 3],\n      [4, 5, 6]\n"),
+            "{text}"
+        );
+        assert!(text.contains("\"empty\": {}"), "{text}");
+    }
+}
