@@ -223,3 +223,62 @@ fn valence4_rings_are_the_bicubic_cap() {
     // Same polynomial in exact arithmetic; second derivatives ×64 at ring 4.
     assert!(worst < 1e-10, "worst {worst:e}");
 }
+
+/// The kernel's own evaluator (`TensorPatch::evaluate` / `normal`) on ring
+/// patches: position and first partials agree with the Bernstein jet used
+/// above, and unit normals agree where ring patches meet — across the three
+/// pieces of a sector, across sectors (each sector's `(u, v)` frame is
+/// counter-clockwise, so `∂u × ∂v` points to the same side) and between rings.
+#[test]
+fn kernel_evaluation_and_normals_across_boundaries() {
+    let mut rng = Rng(0x5eed_0004);
+    for n in [3usize, 5] {
+        let ext = ExtNet::random(n, &mut rng, 0.3);
+        let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
+        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        sub.step().unwrap();
+        let ring0: Vec<_> = sub.ring_patches().collect();
+        sub.step().unwrap();
+        let ring1: Vec<_> = sub.ring_patches().collect();
+        let mut worst_eval = 0.0f64;
+        let mut worst_normal = 0.0f64;
+        for s in 0..n {
+            let p = &ring0[3 * s];
+            for (u, v) in [(0.3, 0.7), (1.0, 0.0), (0.0, 1.0), (0.5, 0.5)] {
+                let e = p.evaluate(u, v).unwrap();
+                let j = patch_jet(p, 0.0, 0.0, 1.0, u, v);
+                for (a, b) in [(e.position, j.d[0]), (e.du, j.d[1]), (e.dv, j.d[2])] {
+                    worst_eval = worst_eval.max(a.max_abs_diff(capdiv::Point3(b)));
+                }
+            }
+            let next = (s + 1) % n;
+            for t in [0.1, 0.45, 0.9] {
+                let pairs = [
+                    // piece 0 (u = x−½ ...) top edge v=1 meets piece 2's bottom edge v=0.
+                    (ring0[3 * s].normal(t, 1.0), ring0[3 * s + 2].normal(t, 0.0)),
+                    // piece 1's right edge u=1 meets piece 2's left edge u=0.
+                    (
+                        ring0[3 * s + 1].normal(1.0, t),
+                        ring0[3 * s + 2].normal(0.0, t),
+                    ),
+                    // piece 1 of s (x = 0 edge, u=0, v along y) meets piece 0 of
+                    // s+1 (y = 0 edge, v=0, u along its x = our y).
+                    (
+                        ring0[3 * s + 1].normal(0.0, t),
+                        ring0[3 * next].normal(t, 0.0),
+                    ),
+                    // ring 1's piece 0 at u = 1 (x = ½) meets ring 0's pieces at u = 0.
+                    (
+                        ring1[3 * s].normal(1.0, t),
+                        ring0[3 * s].normal(0.0, t / 2.0),
+                    ),
+                ];
+                for (a, b) in pairs {
+                    worst_normal = worst_normal.max(a.unwrap().max_abs_diff(b.unwrap()));
+                }
+            }
+        }
+        assert!(worst_eval < 1e-12, "n={n}: evaluate vs jet {worst_eval:e}");
+        assert!(worst_normal < 1e-10, "n={n}: normals {worst_normal:e}");
+    }
+}

@@ -36,15 +36,16 @@ pub(crate) fn check_valence(n: usize) -> Result<(), Error> {
     }
 }
 
-/// Splits `nodes` into `per`-point sectors; `len` must be a positive multiple.
-fn sector_count(len: usize, per: usize) -> Result<usize, Error> {
-    if !len.is_multiple_of(per) {
+/// The number of `PER`-point sectors in `len` points (a positive multiple).
+/// `PER` is a constant, so the divisions cannot divide by zero.
+fn sector_count<const PER: usize>(len: usize) -> Result<usize, Error> {
+    let n = len / PER;
+    if n.saturating_mul(PER) != len {
         return Err(Error::WrongLength {
-            expected: (len / per + 1) * per,
+            expected: n.saturating_add(1).saturating_mul(PER),
             found: len,
         });
     }
-    let n = len / per;
     check_valence(n)?;
     Ok(n)
 }
@@ -58,7 +59,10 @@ fn finite<R: Real>(p: &[R; 3]) -> bool {
 pub(crate) fn sector_at<T>(sectors: &[T], s: usize, ds: i8) -> Result<&T, Error> {
     let n = NonZeroUsize::new(sectors.len()).ok_or(Error::ValenceTooSmall { valence: 0 })?;
     // s < n ≤ 10 and ds ≥ −8: no wrap-around in practice; wrapping keeps it panic-free.
-    let k = (s.wrapping_add(2 * n.get())).wrapping_add_signed(isize::from(ds)) % n;
+    let k = s
+        .wrapping_add(n.get().wrapping_mul(2))
+        .wrapping_add_signed(isize::from(ds))
+        % n;
     sectors.get(k).ok_or(Error::OutOfDomain)
 }
 
@@ -76,7 +80,7 @@ impl<R: Real> CNet<R> {
     /// 6), [`Error::ValenceTooSmall`] (`n < 3`), [`Error::ValenceUnsupported`]
     /// (`n > 10`), [`Error::NonFinite`].
     pub fn new(center: [R; 3], nodes: &[[R; 3]]) -> Result<Self, Error> {
-        sector_count(nodes.len(), C_SECTOR)?;
+        sector_count::<C_SECTOR>(nodes.len())?;
         let (chunks, _) = nodes.as_chunks::<C_SECTOR>();
         Self::from_sectors(center, chunks)
     }
@@ -199,7 +203,7 @@ impl<R: Real> DNet<R> {
     /// Errors, in this order: [`Error::WrongLength`] (not a multiple of 12),
     /// [`Error::ValenceTooSmall`], [`Error::ValenceUnsupported`], [`Error::NonFinite`].
     pub fn new(nodes: &[[R; 3]], c0: Option<[R; 3]>) -> Result<Self, Error> {
-        sector_count(nodes.len(), D_SECTOR)?;
+        sector_count::<D_SECTOR>(nodes.len())?;
         let (chunks, _) = nodes.as_chunks::<D_SECTOR>();
         Self::from_sectors(chunks, c0)
     }
@@ -281,23 +285,24 @@ impl<R: Real> DNet<R> {
 
 /// The per-sector weights `e_ij / γ_n` of formula (4), node order `i + 4j`.
 fn limit_weights<R: Real>(n: usize) -> [R; D_SECTOR] {
-    let nn = n as i64;
+    // Integers below 2^53, exact in f64 (n ≤ 10: |e| < 10^6, γ < 3·10^7).
+    let nn = n as f64;
     let (g, e00, e20, e22, e30, e31, e32) = if n == 3 {
-        (93_120, 11, -73, 10_643, -66, 396, 19_062)
+        (93_120.0, 11.0, -73.0, 10_643.0, -66.0, 396.0, 19_062.0)
     } else {
-        let e30 = 336 * (153 * nn - 448);
+        let e30 = 336.0 * (153.0 * nn - 448.0);
         (
-            178_480 * nn * (nn + 5),
-            2587 * nn - 8377,
-            19_339 * nn - 53_929,
-            157_051 * nn + 50_279,
+            178_480.0 * nn * (nn + 5.0),
+            2587.0 * nn - 8377.0,
+            19_339.0 * nn - 53_929.0,
+            157_051.0 * nn + 50_279.0,
             e30,
-            -6 * e30,
-            48 * (8483 * nn - 5008),
+            -6.0 * e30,
+            48.0 * (8483.0 * nn - 5008.0),
         )
     };
-    let (e10, e11, e21) = (-6 * e00, 36 * e00, -6 * e20);
+    let (e10, e11, e21) = (-6.0 * e00, 36.0 * e00, -6.0 * e20);
     // 00 10 20 30 01 11 21 31 02 12 22 32
-    let e: [i64; D_SECTOR] = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
-    e.map(|x| R::from_f64(x as f64 / g as f64))
+    let e: [f64; D_SECTOR] = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
+    e.map(|x| R::from_f64(x / g))
 }

@@ -18,8 +18,15 @@ pub(crate) enum Rule<'r, 't> {
     Eg(&'r RuleTable<'t>),
 }
 
-/// The six outer new nodes `(i', j')` with `i' = 0` or `j' = 0`.
-const OUTER: [(usize, usize); 6] = [(0, 0), (1, 0), (2, 0), (3, 0), (0, 1), (0, 2)];
+/// The six outer new nodes `(i', j', i' + 4j')` with `i' = 0` or `j' = 0`.
+const OUTER: [(usize, usize, usize); 6] = [
+    (0, 0, 0),
+    (1, 0, 1),
+    (2, 0, 2),
+    (3, 0, 3),
+    (0, 1, 4),
+    (0, 2, 8),
+];
 
 /// `c0 + Σ w/256 (d − c0)` over a §5 stencil centred on sector `s`.
 /// `center` stands in for the lattice node at the center (valence 4 only).
@@ -63,8 +70,8 @@ pub(crate) fn center_node<R: Real>(old: &DNet<R>) -> Result<Point3<R>, Error> {
 /// The §5 stencil of new node `(i', j')`.
 fn regular_stencil(i: usize, j: usize) -> Result<&'static [Term; 9], Error> {
     REGULAR
-        .get(i + 2)
-        .and_then(|row| row.get(j + 2))
+        .get(i.wrapping_add(2))
+        .and_then(|row| row.get(j.wrapping_add(2)))
         .ok_or(Error::OutOfDomain)
 }
 
@@ -96,8 +103,8 @@ pub(crate) fn refine<R: Real>(
                 return Err(Error::TableShape);
             }
             for (s, sec) in out.sectors.iter_mut().enumerate() {
-                for (i, j) in OUTER {
-                    if let Some(p) = sec.get_mut(i + 4 * j) {
+                for (i, j, k) in OUTER {
+                    if let Some(p) = sec.get_mut(k) {
                         *p = gather(old, s, 0, regular_stencil(i, j)?, None)?;
                     }
                 }

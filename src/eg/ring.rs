@@ -57,7 +57,7 @@ pub(crate) fn ring_patch<R: Real>(
     k: usize,
 ) -> Result<BiquarticPatch<R>, Error> {
     let n = old.valence();
-    if k >= PATCHES_PER_SECTOR * n || new.valence() != n {
+    if k >= n.saturating_mul(PATCHES_PER_SECTOR) || new.valence() != n {
         return Err(Error::OutOfDomain);
     }
     let (s, p) = (k / PATCHES_PER_SECTOR, k % PATCHES_PER_SECTOR);

@@ -82,16 +82,16 @@ fn image(sym: Symmetry, n: usize, r: usize, col: usize) -> (usize, usize) {
         Symmetry::None => (r as usize, col),
         Symmetry::FromTwentyOne | Symmetry::Diagonal => {
             if i <= 2 {
-                (wrap(-r, n), j + 4 * i)
+                (wrap(r.wrapping_neg(), n), j + 4 * i)
             } else {
-                (wrap(-r - 1, n), col)
+                (wrap(r.wrapping_neg().wrapping_sub(1), n), col)
             }
         }
         Symmetry::Spoke => {
             if i <= 2 {
-                (wrap(1 - r, n), j + 4 * i)
+                (wrap(1isize.wrapping_sub(r), n), j + 4 * i)
             } else {
-                (wrap(-r, n), col)
+                (wrap(r.wrapping_neg(), n), col)
             }
         }
     }
@@ -198,8 +198,8 @@ impl<'a> RuleTable<'a> {
         let n = self.valence;
         match node {
             InnerNode::D21 | InnerNode::D12 => n,
-            InnerNode::D11 | InnerNode::D22 => n / 2 + 1,
-            InnerNode::D31 | InnerNode::D32 => n.div_ceil(2) + 1,
+            InnerNode::D11 | InnerNode::D22 => (n / 2).saturating_add(1),
+            InnerNode::D31 | InnerNode::D32 => n.div_ceil(2).saturating_add(1),
         }
     }
 
@@ -241,8 +241,9 @@ impl<'a> RuleTable<'a> {
     pub fn c0_weight(&self, node: InnerNode) -> Option<i32> {
         let mut sum: i32 = 0;
         for r in 0..self.valence {
-            // |a| < 10⁵ and 120 entries: no overflow.
-            sum = sum.checked_add(self.row(node, r)?.iter().sum::<i32>())?;
+            for a in self.row(node, r)? {
+                sum = sum.checked_add(a)?;
+            }
         }
         WEIGHT_SCALE.checked_sub(sum)
     }

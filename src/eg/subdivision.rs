@@ -126,7 +126,7 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         if self.level == 0 {
             0
         } else {
-            PATCHES_PER_SECTOR * self.valence()
+            self.valence().saturating_mul(PATCHES_PER_SECTOR)
         }
     }
 
@@ -157,7 +157,7 @@ impl<R: Real> Iterator for EgRingPatches<'_, '_, R> {
     type Item = BiquarticPatch<R>;
     fn next(&mut self) -> Option<Self::Item> {
         let p = self.sub.ring_patch(self.next).ok()?;
-        self.next += 1;
+        self.next = self.next.saturating_add(1);
         Some(p)
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
