@@ -79,7 +79,9 @@ impl<R: Real, const CAP: usize> Iterator for RingPatches<'_, R, CAP> {
         }
         let i = self.next;
         self.next += 1;
-        self.net.ring_patch(i / n, i % n).ok()
+        // n >= 3 here; the checked forms only spare a divide-by-zero path.
+        let (span, column) = (i.checked_div(n)?, i.checked_rem(n)?);
+        self.net.ring_patch(span, column).ok()
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
         let left = (2 * self.net.valence()).saturating_sub(self.next);

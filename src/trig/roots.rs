@@ -59,7 +59,10 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
     /// `(c(j/N), s(j/N))` for any `j` (taken mod `N`).
     #[inline]
     pub fn get(&self, j: usize) -> [R; 2] {
-        self.ring[j % self.ring.len()]
+        // A constructed ring is never empty; `checked_rem` and `at` only spare
+        // the divide-by-zero and bounds-check panic paths.
+        let k = j.checked_rem(self.ring.len()).unwrap_or(0);
+        at(&self.ring, k, [R::ZERO; 2])
     }
 
     /// All entries, `j = 0..N`.
