@@ -1,8 +1,10 @@
-//! The level-0 outer region (spec C2PS.md §5): with `L > 6` links the level-0
-//! configuration directly defines the regular bicubic surface between the
-//! level-0 ring and the last links, `r ∈ [4, L−2]`, without refinement.
+//! The level-0 outer region (spec C2PS.md §5). The spec counts the pole as
+//! link 0, so its `L` is the number of links plus one: with `K = L−1 ≥ 6` links
+//! the level-0 configuration directly defines the regular bicubic surface
+//! between the level-0 ring and the last links, `r ∈ [4, K−1]`, without
+//! refinement.
 //!
-//! Span `k` (`r ∈ [k, k+1]`, `k = 4..L−3`) uses links `k−1..k+2`; each span has
+//! Span `k` (`r ∈ [k, k+1]`, `k = 4..=K−2`) uses links `k−1..k+2`; each span has
 //! `n` periodic patches. Together with the rings of levels 0, 1, … it covers
 //! everything but the shrinking hole around the pole.
 
@@ -23,7 +25,7 @@ pub struct OuterRegion<'a, R, L> {
 
 impl<'a, R: Real, L: AsRef<[[R; 3]]>> OuterRegion<'a, R, L> {
     /// Validates the configuration like [`crate::polar::PolarNet::new`]
-    /// (same errors, same order). With `L ≤ 6` links the region is empty.
+    /// (same errors, same order). With at most 5 links the region is empty.
     pub fn new(pole: [R; 3], links: &'a [L]) -> Result<Self, Error> {
         let valence = validate(&pole, links)?;
         Ok(OuterRegion {
@@ -33,10 +35,10 @@ impl<'a, R: Real, L: AsRef<[[R; 3]]>> OuterRegion<'a, R, L> {
         })
     }
 
-    /// Radial spans: `max(L − 6, 0)`.
+    /// Radial spans: `max(K − 5, 0)` for `K` links.
     #[inline]
     pub fn spans(&self) -> usize {
-        self.links.len().saturating_sub(6)
+        self.links.len().saturating_sub(5)
     }
 
     /// Number of patches, `spans · n`.
@@ -45,7 +47,7 @@ impl<'a, R: Real, L: AsRef<[[R; 3]]>> OuterRegion<'a, R, L> {
         self.spans() * self.valence
     }
 
-    /// `true` when the configuration has at most 6 links.
+    /// `true` when the configuration has at most 5 links.
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.len() == 0

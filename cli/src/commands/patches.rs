@@ -2,7 +2,7 @@
 //! (spec C2PS.md §5), as JSON or as an OBJ mesh.
 //!
 //! Order: first the level-0 outer region (kernel `OuterRegion`, only when the
-//! input has more than 6 links; `level` 0), then the rings of levels 0, 1, …, M,
+//! input has 6 or more links; `level` 0), then the rings of levels 0, 1, …, M,
 //! each `2N` patches with `N = n·2^m` (span 0 columns 0..N, then span 1).
 //!
 //! A ring needs links 1..5. An input with K links has them at level 0 when
