@@ -18,6 +18,7 @@ mod report;
 #[allow(dead_code)] // each workload uses its own part
 mod sample;
 mod stack;
+mod surface;
 
 #[cfg(feature = "c2ps")]
 mod c2ps;
@@ -30,6 +31,7 @@ use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 #[entry]
 fn main() -> ! {
     defmt::println!("start");
+    surface::link();
     #[allow(unused_mut)]
     let mut ok = true;
     #[cfg(feature = "c2ps")]

@@ -1,0 +1,154 @@
+//! Link-time panic check of the kernel's public API (issue 4).
+//!
+//! The workloads call the kernel with the fixed sample data, and LTO may fold
+//! away checks that only those inputs make dead. Here every public
+//! refinement and evaluation entry point is called with arguments hidden
+//! behind [`black_box`], so the optimiser knows nothing about them, from a
+//! branch it cannot prove dead (`black_box(false)`): it is linked, never run.
+//! With the release panic handler (see `main.rs`), any panic path left in
+//! these calls makes the link fail.
+
+use core::hint::black_box;
+
+/// Links the API surface of the enabled schemes. Never executes it.
+#[inline(never)]
+pub fn link() {
+    if black_box(false) {
+        #[cfg(feature = "c2ps")]
+        c2ps::all();
+        #[cfg(feature = "eg")]
+        eg::all();
+        common::all();
+    }
+}
+
+/// Shared pieces: Bézier patches, the B-spline conversion, the root ring.
+mod common {
+    use super::black_box;
+    use capdiv::bezier::bspline_to_bezier_cubic;
+    use capdiv::trig::{primitive_root, RootsOfUnity};
+    use capdiv::{BicubicPatch, BiquarticPatch, Point3};
+
+    #[inline(never)]
+    pub fn all() {
+        let p = black_box(Point3::<f32>::ZERO);
+        let (u, v) = black_box((0.5f32, 0.5f32));
+        let cubic = BicubicPatch {
+            points: bspline_to_bezier_cubic(&black_box([[p; 4]; 4])),
+        };
+        let _ = black_box(cubic.evaluate(u, v));
+        let _ = black_box(cubic.position(u, v));
+        let _ = black_box(cubic.normal(u, v));
+        let quartic = BiquarticPatch {
+            points: black_box([[p; 5]; 5]),
+        };
+        let _ = black_box(quartic.evaluate(u, v).map(|e| e.normal()));
+        let _ = black_box(primitive_root(black_box(12)));
+        if let Ok(mut ring) = RootsOfUnity::<f32, 96>::new(black_box(6)) {
+            let _ = black_box(ring.get(black_box(7)));
+            let _ = black_box(ring.double());
+        }
+        let _ = black_box(p.norm() + p.dot(p) + p.max_abs_diff(p));
+        let _ = black_box(p.cross(p).cast::<f64>());
+    }
+}
+
+#[cfg(feature = "c2ps")]
+mod c2ps {
+    use super::black_box;
+    use capdiv::{FirstStep, OuterRegion, PolarNet, PoleJet};
+
+    /// Small enough that this never-run code costs no stack to speak of.
+    type Net = PolarNet<f32, 24>;
+
+    #[inline(never)]
+    pub fn all() {
+        let pole = black_box([0.0f32; 3]);
+        let pts: &[[f32; 3]] = black_box(&[[0.0; 3]; 21]);
+        let len = black_box(3);
+        let links: [&[[f32; 3]]; 7] = black_box([pts; 7]).map(|l| l.get(..len).unwrap_or(l));
+        let links: &[&[[f32; 3]]] = black_box(&links);
+        let flat: &[f32] = black_box(&[0.0; 63]);
+        for mut net in [
+            Net::new(pole, links),
+            Net::from_flat(pole, black_box(3), flat),
+        ]
+        .into_iter()
+        .flatten()
+        {
+            let _ = black_box(net.step(black_box(FirstStep::Plain)));
+            net.rts_step();
+            let _ = black_box(net.link(black_box(2)));
+            let _ = black_box(net.ring_patch(black_box(1), black_box(2)));
+            for patch in net.ring_patches().into_iter().flatten() {
+                black_box(patch);
+            }
+            let jet = PoleJet::of(&net);
+            let _ = black_box((jet.limit(), jet.geometry()));
+            black_box((net.valence(), net.level(), net.pole(), net.ring_len()));
+        }
+        if let Ok(region) = OuterRegion::new(pole, links) {
+            let _ = black_box(region.patch(black_box(4)));
+            for patch in region.patches() {
+                black_box(patch);
+            }
+        }
+    }
+}
+
+#[cfg(feature = "eg")]
+mod eg {
+    use super::black_box;
+    use capdiv::eg::{lambda_catmull_clark, CNet, DNet, EgSubdivision, InnerNode, RuleTable};
+
+    #[inline(never)]
+    pub fn all() {
+        let center = black_box([0.0f32; 3]);
+        let nodes: &[[f32; 3]] = black_box(&[[0.0; 3]; 120]);
+        let len = black_box(18);
+        let nodes = nodes.get(..len).unwrap_or(nodes);
+        let c0 = black_box(Some([0.0f32; 3]));
+        if let Ok(c) = CNet::new(center, nodes) {
+            let _ = black_box((c.limit(), c.regular_cap(), c.sector(black_box(1))));
+            let d = c.to_dnet();
+            let _ = black_box((d.fitted_limit(), d.node(black_box(1), 2, 1)));
+            let _ = black_box(d.refined(None));
+            let _ = black_box(CNet::from_sectors(
+                center,
+                black_box(&[[[0.0f32; 3]; 6]; 3]),
+            ));
+        }
+        if let Ok(d) = DNet::new(nodes, c0) {
+            let table = RuleTable::builtin(black_box(3));
+            let _ = black_box(d.refined(table.as_ref()));
+            let _ = black_box(DNet::from_sectors(black_box(&[[[0.0f32; 3]; 12]; 3]), c0));
+            if let Some(t) = table {
+                let node = black_box(InnerNode::ALL[1]);
+                let _ = black_box((t.row(node, black_box(2)), t.c0_weight(node)));
+                let user = RuleTable::new(
+                    black_box(3),
+                    t.listed(InnerNode::D11),
+                    t.listed(InnerNode::D22),
+                    t.listed(InnerNode::D21),
+                    t.listed(InnerNode::D31),
+                    t.listed(InnerNode::D32),
+                );
+                if let Ok(user) = user {
+                    if let Ok(mut sub) = EgSubdivision::with_table(d.clone(), user) {
+                        let _ = black_box(sub.step());
+                        let _ = black_box(sub.ring_patch(black_box(2)));
+                    }
+                }
+            }
+            if let Ok(mut sub) = EgSubdivision::new(d) {
+                let _ = black_box(sub.step());
+                let _ = black_box(sub.ring_patch(black_box(2)));
+                for patch in sub.ring_patches() {
+                    black_box(patch);
+                }
+                black_box((sub.c0(), sub.level(), sub.net(), sub.previous()));
+            }
+        }
+        black_box(lambda_catmull_clark(black_box(7)));
+    }
+}
