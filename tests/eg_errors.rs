@@ -21,24 +21,67 @@ fn cnet_errors() {
     // Not a multiple of 6.
     assert_eq!(
         CNet::new(e, &nodes[..29]).unwrap_err(),
-        Error::WrongLength { expected: 30, found: 29 }
+        Error::WrongLength {
+            expected: 30,
+            found: 29
+        }
     );
     // Valence 2 and 11.
-    assert_eq!(CNet::new(e, &nodes[..12]).unwrap_err(), Error::ValenceTooSmall { valence: 2 });
-    assert_eq!(CNet::<f64>::new(e, &[]).unwrap_err(), Error::ValenceTooSmall { valence: 0 });
+    assert_eq!(
+        CNet::new(e, &nodes[..12]).unwrap_err(),
+        Error::ValenceTooSmall { valence: 2 }
+    );
+    assert_eq!(
+        CNet::<f64>::new(e, &[]).unwrap_err(),
+        Error::ValenceTooSmall { valence: 0 }
+    );
     let big: Vec<[f64; 3]> = (0..66).map(|k| [k as f64, 0.0, 1.0]).collect();
-    assert_eq!(CNet::new(e, &big).unwrap_err(), Error::ValenceUnsupported { valence: 11 });
+    assert_eq!(
+        CNet::new(e, &big).unwrap_err(),
+        Error::ValenceUnsupported { valence: 11 }
+    );
     // Non-finite anywhere.
     for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let mut v = nodes.clone();
         v[17][1] = bad;
         assert_eq!(CNet::new(e, &v).unwrap_err(), Error::NonFinite);
-        assert_eq!(CNet::new([0.0, bad, 0.0], &nodes).unwrap_err(), Error::NonFinite);
+        assert_eq!(
+            CNet::new([0.0, bad, 0.0], &nodes).unwrap_err(),
+            Error::NonFinite
+        );
     }
     assert_eq!(nodes, keep);
+    // Flat coordinates: same net, or WrongLength when not whole triples.
+    let coords: Vec<f64> = nodes.iter().flatten().copied().collect();
+    assert_eq!(
+        CNet::from_flat(e, &coords).unwrap(),
+        CNet::new(e, &nodes).unwrap()
+    );
+    // Counted in coordinates, like PolarNet::from_flat: 18 per sector.
+    assert_eq!(
+        CNet::from_flat(e, &coords[..89]).unwrap_err(),
+        Error::WrongLength {
+            expected: 90,
+            found: 89
+        }
+    );
+    assert_eq!(
+        CNet::from_flat(e, &coords[..87]).unwrap_err(),
+        Error::WrongLength {
+            expected: 90,
+            found: 87
+        }
+    );
+    assert_eq!(
+        CNet::from_flat(e, &coords[..36]).unwrap_err(),
+        Error::ValenceTooSmall { valence: 2 }
+    );
     // n = 4 cap only for n = 4.
     let c5 = CNet::new(e, &nodes).unwrap();
-    assert_eq!(c5.regular_cap().unwrap_err(), Error::ValenceUnsupported { valence: 5 });
+    assert_eq!(
+        c5.regular_cap().unwrap_err(),
+        Error::ValenceUnsupported { valence: 5 }
+    );
 }
 
 #[test]
@@ -49,15 +92,39 @@ fn dnet_errors() {
     let keep = flat.clone();
     assert_eq!(
         DNet::new(&flat[..35], None).unwrap_err(),
-        Error::WrongLength { expected: 36, found: 35 }
+        Error::WrongLength {
+            expected: 36,
+            found: 35
+        }
     );
-    assert_eq!(DNet::new(&flat[..24], None).unwrap_err(), Error::ValenceTooSmall { valence: 2 });
+    assert_eq!(
+        DNet::new(&flat[..24], None).unwrap_err(),
+        Error::ValenceTooSmall { valence: 2 }
+    );
     let big = vec![[0.5f64; 3]; 132];
-    assert_eq!(DNet::new(&big, None).unwrap_err(), Error::ValenceUnsupported { valence: 11 });
+    assert_eq!(
+        DNet::new(&big, None).unwrap_err(),
+        Error::ValenceUnsupported { valence: 11 }
+    );
     let mut v = flat.clone();
     v[35][2] = f64::NAN;
     assert_eq!(DNet::new(&v, None).unwrap_err(), Error::NonFinite);
-    assert_eq!(DNet::new(&flat, Some([f64::INFINITY, 0.0, 0.0])).unwrap_err(), Error::NonFinite);
+    assert_eq!(
+        DNet::new(&flat, Some([f64::INFINITY, 0.0, 0.0])).unwrap_err(),
+        Error::NonFinite
+    );
+    let coords: Vec<f64> = flat.iter().flatten().copied().collect();
+    assert_eq!(
+        DNet::from_flat(&coords, None).unwrap(),
+        DNet::new(&flat, None).unwrap()
+    );
+    assert_eq!(
+        DNet::from_flat(&coords[..100], None).unwrap_err(),
+        Error::WrongLength {
+            expected: 108,
+            found: 100
+        }
+    );
     // Finite nodes whose (4) sum overflows.
     let huge = vec![[1e308f64, -1e308, 1e308]; 36];
     let mut h2 = huge.clone();
@@ -74,7 +141,10 @@ fn valences_without_rules_are_unsupported() {
             EgSubdivision::new(d.clone()).unwrap_err(),
             Error::ValenceUnsupported { valence: n }
         );
-        assert_eq!(d.refined(None).unwrap_err(), Error::ValenceUnsupported { valence: n });
+        assert_eq!(
+            d.refined(None).unwrap_err(),
+            Error::ValenceUnsupported { valence: n }
+        );
         assert!(RuleTable::builtin(n).is_none());
     }
     assert!(RuleTable::builtin(4).is_none());
@@ -100,18 +170,26 @@ fn ring_index_errors() {
     let (e, nodes) = cnet_nodes(5);
     let mut sub = EgSubdivision::from_cnet(&CNet::new(e, &nodes).unwrap()).unwrap();
     assert_eq!(sub.ring_patch(0).unwrap_err(), Error::OutOfDomain);
+    assert_eq!(sub.ring_patch_domain(0).unwrap_err(), Error::OutOfDomain);
     assert_eq!(sub.ring_patches().count(), 0);
     sub.step().unwrap();
     assert_eq!(sub.ring_len(), 15);
     assert!(sub.ring_patch(14).is_ok());
     assert_eq!(sub.ring_patch(15).unwrap_err(), Error::OutOfDomain);
+    assert_eq!(sub.ring_patch_domain(15).unwrap_err(), Error::OutOfDomain);
     assert_eq!(sub.ring_patches().len(), 15);
 }
 
 type Rows = Vec<[i32; 12]>;
 
 fn table5() -> [Rows; 5] {
-    [A11_5.to_vec(), A22_5.to_vec(), A21_5.to_vec(), A31_5.to_vec(), A32_5.to_vec()]
+    [
+        A11_5.to_vec(),
+        A22_5.to_vec(),
+        A21_5.to_vec(),
+        A31_5.to_vec(),
+        A32_5.to_vec(),
+    ]
 }
 
 fn check(n: usize, t: &[Rows; 5]) -> Result<(), Error> {
@@ -122,13 +200,22 @@ fn check(n: usize, t: &[Rows; 5]) -> Result<(), Error> {
 fn user_table_shape() {
     let good = table5();
     assert_eq!(check(5, &good), Ok(()));
-    let t3 = [A11_3.to_vec(), A22_3.to_vec(), A21_3.to_vec(), A31_3.to_vec(), A32_3.to_vec()];
+    let t3 = [
+        A11_3.to_vec(),
+        A22_3.to_vec(),
+        A21_3.to_vec(),
+        A31_3.to_vec(),
+        A32_3.to_vec(),
+    ];
     assert_eq!(check(3, &t3), Ok(()));
     // Wrong valence for the rows, or valence 4 (no EG rule), or out of range.
     assert_eq!(check(7, &good), Err(Error::TableShape));
     assert_eq!(check(4, &good), Err(Error::TableShape));
     assert_eq!(check(2, &good), Err(Error::ValenceTooSmall { valence: 2 }));
-    assert_eq!(check(11, &good), Err(Error::ValenceUnsupported { valence: 11 }));
+    assert_eq!(
+        check(11, &good),
+        Err(Error::ValenceUnsupported { valence: 11 })
+    );
     // One row missing / one too many in each array.
     for k in 0..5 {
         let mut t = good.clone();
@@ -144,8 +231,16 @@ fn user_table_shape() {
     t[2][4][0] = 100_000;
     assert_eq!(check(5, &t), Err(Error::TableShape));
     // The paper's appendix keeps one row per array for n = 6 (spec §7).
-    let one: Rows = vec![[195, -490, 623, -140, -490, 4810, 4137, 3117, 623, 4137, 63933, 7100]];
-    assert_eq!(check(6, &[one.clone(), one.clone(), one.clone(), one.clone(), one]), Err(Error::TableShape));
+    let one: Rows = vec![[
+        195, -490, 623, -140, -490, 4810, 4137, 3117, 623, 4137, 63933, 7100,
+    ]];
+    assert_eq!(
+        check(
+            6,
+            &[one.clone(), one.clone(), one.clone(), one.clone(), one]
+        ),
+        Err(Error::TableShape)
+    );
 }
 
 #[test]
@@ -161,7 +256,13 @@ fn user_table_symmetry() {
     assert_eq!(check(5, &t), Err(Error::TableSymmetry));
     // n = 3, A11 row 1: the spoke columns map to row −2 = 1 itself, the
     // others to row 2 (not listed): a change there is no symmetry error.
-    let t3 = [A11_3.to_vec(), A22_3.to_vec(), A21_3.to_vec(), A31_3.to_vec(), A32_3.to_vec()];
+    let t3 = [
+        A11_3.to_vec(),
+        A22_3.to_vec(),
+        A21_3.to_vec(),
+        A31_3.to_vec(),
+        A32_3.to_vec(),
+    ];
     let mut t = t3.clone();
     t[0][1][7] += 1;
     assert_ne!(check(3, &t), Err(Error::TableSymmetry));
@@ -184,7 +285,9 @@ fn user_table_symmetry() {
 }
 
 fn scaled(rows: &[[i32; 12]], f: f64) -> Rows {
-    rows.iter().map(|r| r.map(|a| (a as f64 * f).round() as i32)).collect()
+    rows.iter()
+        .map(|r| r.map(|a| (a as f64 * f).round() as i32))
+        .collect()
 }
 
 #[test]
@@ -210,13 +313,21 @@ fn user_table_row_sum_and_spectrum() {
 fn table_valence_must_match_net() {
     let d = DNet::new(&vec![[0.0f64; 3]; 60], None).unwrap();
     let t3 = RuleTable::builtin(3).unwrap();
-    assert_eq!(EgSubdivision::with_table(d.clone(), t3).unwrap_err(), Error::TableShape);
+    assert_eq!(
+        EgSubdivision::with_table(d.clone(), t3).unwrap_err(),
+        Error::TableShape
+    );
     assert_eq!(d.refined(Some(&t3)).unwrap_err(), Error::TableShape);
 }
 
 #[test]
 fn errors_display() {
-    for e in [Error::TableShape, Error::TableSymmetry, Error::TableRowSum, Error::TableSpectrum] {
+    for e in [
+        Error::TableShape,
+        Error::TableSymmetry,
+        Error::TableRowSum,
+        Error::TableSpectrum,
+    ] {
         assert!(!e.to_string().is_empty());
     }
 }

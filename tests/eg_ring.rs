@@ -67,6 +67,8 @@ fn assemble(ext: &ExtNet, steps: usize) -> Vec<Placed> {
         assert_eq!(sub.ring_len(), 3 * ext.n);
         for (k, p) in sub.ring_patches().enumerate() {
             let (x0, y0) = [(w, 0.0), (0.0, w), (w, w)][k % 3];
+            let dom = sub.ring_patch_domain(k).unwrap();
+            assert_eq!((dom.sector, dom.x0, dom.y0, dom.size), (k / 3, x0, y0, w));
             out.push(Placed {
                 sector: k / 3,
                 x0,
@@ -148,6 +150,7 @@ fn rings_join_c2_n3_n4_n5_three_rings() {
     for n in [3, 4, 5] {
         let ext = ExtNet::random(n, &mut rng, 0.4);
         let (worst, compared) = worst_c2_mismatch(&ext, 3);
+        println!("n={n}: {compared} jet comparisons, worst relative mismatch {worst:.2e}");
         assert!(compared > 100 * n, "too few comparisons: {compared}");
         assert!(
             worst < C2_TOL,

@@ -12,6 +12,33 @@
 //!   the bicubic cap directly.
 //!
 //! Fixed capacity: at most [`MAX_VALENCE`] sectors, no heap, no panics.
+//!
+//! ```
+//! use capdiv::eg::{CNet, EgSubdivision};
+//! // A valence-3 c-net: center and 6 nodes per sector in the §1 order
+//! // (1,0) (2,0) (1,1) (2,1) (1,2) (2,2), here a flat grid bent upwards.
+//! let mut nodes = Vec::new();
+//! for s in 0..3 {
+//!     let a = s as f64 * core::f64::consts::TAU / 3.0;
+//!     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+//!         let t = a + (y as f64).atan2(x) * 4.0 / 3.0;
+//!         let r = f64::hypot(x, y);
+//!         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+//!     }
+//! }
+//! let net = CNet::new([0.0, 0.0, 0.0], &nodes)?;
+//! let mut eg = EgSubdivision::from_cnet(&net)?;
+//! for _ in 0..4 {
+//!     eg.step()?;
+//!     for (k, patch) in eg.ring_patches().enumerate() {
+//!         let domain = eg.ring_patch_domain(k)?; // where it lies in sector `domain.sector`
+//!         let normal = patch.normal(0.5, 0.5)?;   // bi-4 Bézier patch (§9)
+//!         assert!(normal.0[2] > 0.0 && domain.size > 0.0);
+//!     }
+//! }
+//! assert_eq!(eg.c0(), net.limit()); // c0 by (3), fixed for all steps
+//! # Ok::<(), capdiv::Error>(())
+//! ```
 
 mod layout;
 pub mod net;
@@ -27,7 +54,7 @@ pub use net::{CNet, CSector, DNet, DSector, C_SECTOR, D_SECTOR};
 pub use ring::PATCHES_PER_SECTOR;
 pub use rule::{InnerNode, RuleTable, WEIGHT_SCALE};
 pub use spectrum::{lambda_catmull_clark, LAMBDA_TOLERANCE};
-pub use subdivision::{EgRingPatches, EgSubdivision};
+pub use subdivision::{EgRingPatches, EgSubdivision, PatchDomain};
 
 /// The largest valence EG supports (the paper's tables stop at 10).
 pub const MAX_VALENCE: usize = 10;

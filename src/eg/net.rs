@@ -50,6 +50,19 @@ fn sector_count<const PER: usize>(len: usize) -> Result<usize, Error> {
     Ok(n)
 }
 
+/// `coords` as points; [`Error::WrongLength`] unless a multiple of 3.
+fn triples<R>(coords: &[R]) -> Result<&[[R; 3]], Error> {
+    let (pts, rest) = coords.as_chunks::<3>();
+    if rest.is_empty() {
+        Ok(pts)
+    } else {
+        Err(Error::WrongLength {
+            expected: coords.len().saturating_sub(rest.len()).saturating_add(3),
+            found: coords.len(),
+        })
+    }
+}
+
 fn finite<R: Real>(p: &[R; 3]) -> bool {
     p.iter().all(|c| c.is_finite())
 }
@@ -83,6 +96,14 @@ impl<R: Real> CNet<R> {
         sector_count::<C_SECTOR>(nodes.len())?;
         let (chunks, _) = nodes.as_chunks::<C_SECTOR>();
         Self::from_sectors(center, chunks)
+    }
+
+    /// A c-net from flat coordinates: `coords` holds the `6n` nodes as `x, y, z`
+    /// triples (the layout of the C ABI and WASM). Errors as [`CNet::new`],
+    /// with [`Error::WrongLength`] counted in coordinates (a multiple of 18).
+    pub fn from_flat(center: [R; 3], coords: &[R]) -> Result<Self, Error> {
+        sector_count::<{ 3 * C_SECTOR }>(coords.len())?;
+        Self::new(center, triples(coords)?)
     }
 
     /// A c-net from its center and `n` sectors of 6 nodes (§1 order).
@@ -206,6 +227,14 @@ impl<R: Real> DNet<R> {
         sector_count::<D_SECTOR>(nodes.len())?;
         let (chunks, _) = nodes.as_chunks::<D_SECTOR>();
         Self::from_sectors(chunks, c0)
+    }
+
+    /// A d-net from flat coordinates (`12n` nodes as `x, y, z` triples).
+    /// Errors as [`DNet::new`], with [`Error::WrongLength`] counted in
+    /// coordinates (a multiple of 36).
+    pub fn from_flat(coords: &[R], c0: Option<[R; 3]>) -> Result<Self, Error> {
+        sector_count::<{ 3 * D_SECTOR }>(coords.len())?;
+        Self::new(triples(coords)?, c0)
     }
 
     /// A d-net from `n` sectors of 12 nodes; `c0` as in [`DNet::new`].

@@ -140,10 +140,48 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         ring_patch(&self.prev, &self.cur, k)
     }
 
+    /// Where patch `k` of the last step's ring lies: its sector and square in
+    /// that sector's level-0 c-units (patch `u` along `x`, `v` along `y`).
+    /// [`Error::OutOfDomain`] for `k ≥ ring_len()`.
+    pub fn ring_patch_domain(&self, k: usize) -> Result<PatchDomain, Error> {
+        if k >= self.ring_len() {
+            return Err(Error::OutOfDomain);
+        }
+        // Level-(m−1) hole [0, 2^−(m−1)]²; the ring's pieces have half its size.
+        let exponent = i32::try_from(self.level).unwrap_or(i32::MAX);
+        let size = libm::pow(0.5, f64::from(exponent));
+        let (x0, y0) = match k % PATCHES_PER_SECTOR {
+            0 => (size, 0.0),
+            1 => (0.0, size),
+            _ => (size, size),
+        };
+        Ok(PatchDomain {
+            sector: k / PATCHES_PER_SECTOR,
+            x0,
+            y0,
+            size,
+        })
+    }
+
     /// All patches of the last step's ring, in index order.
     pub fn ring_patches(&self) -> EgRingPatches<'_, 't, R> {
         EgRingPatches { sub: self, next: 0 }
     }
+}
+
+/// The square `[x0, x0+size] × [y0, y0+size]` of a ring patch in its sector's
+/// level-0 c-units (§9: the hole of the level-m d-net is `[0, 2⁻ᵐ]²`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct PatchDomain {
+    /// The sector.
+    pub sector: usize,
+    /// Lower `x` (along spoke `sector`).
+    pub x0: f64,
+    /// Lower `y` (along spoke `sector + 1`).
+    pub y0: f64,
+    /// Side length.
+    pub size: f64,
 }
 
 /// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
