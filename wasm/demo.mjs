@@ -100,4 +100,50 @@ for (const c of cases) {
   line(`jet ${j}`, j > 0 ? get(jetAt, j) : []);
   count++;
 }
-console.log(`cases ${count}`);
+// EG (spec EG.md): c-nets of valence n, sector s spanned by the directions at
+// 2πs/n and 2π(s+1)/n, nodes in the §1 order, on a perturbed paraboloid.
+const order = [[1, 0], [2, 0], [1, 1], [2, 1], [1, 2], [2, 2]];
+function cnet(n) {
+  const center = [0.05 * rand(), 0.05 * rand(), 0.05 * rand()];
+  const nodes = [];
+  for (let s = 0; s < n; s++) {
+    const a0 = (2 * Math.PI * s) / n;
+    const a1 = (2 * Math.PI * (s + 1)) / n;
+    for (const [x, y] of order) {
+      const px = x * Math.cos(a0) + y * Math.cos(a1) + 0.05 * rand();
+      const py = x * Math.sin(a0) + y * Math.sin(a1) + 0.05 * rand();
+      nodes.push(px, py, 0.2 * (px * px + py * py) + 0.05 * rand());
+    }
+  }
+  return { center, nodes };
+}
+const egCases = [];
+for (const n of [3, 4, 5]) {
+  for (const steps of [0, 1, 4]) egCases.push({ steps, ...cnet(n) });
+}
+// Errors: valence 6 has no built-in rule; 2 sectors; a ragged node list.
+egCases.push({ steps: 1, ...cnet(6) });
+egCases.push({ steps: 1, ...cnet(2) });
+const raggedEg = cnet(3);
+raggedEg.nodes.pop();
+egCases.push({ steps: 1, ...raggedEg });
+
+let egCount = 0;
+for (const c of egCases) {
+  const outLen = 225 * 10;
+  const centerAt = base;
+  const nodesAt = centerAt + 3 * F64;
+  const outAt = nodesAt + c.nodes.length * F64;
+  ensure(outAt + outLen * F64 - base);
+  put(c.center, centerAt);
+  put(c.nodes, nodesAt);
+  console.log(`egcase ${egCount} ${c.steps} ${c.nodes.length}`);
+  line("center", c.center);
+  line("nodes", c.nodes);
+  const r = w.capdiv_eg_refine(centerAt, nodesAt, c.nodes.length, c.steps, outAt, outLen);
+  line(`egrefine ${r}`, r > 0 ? get(outAt, r) : []);
+  const g = w.capdiv_eg_ring(centerAt, nodesAt, c.nodes.length, c.steps, outAt, outLen);
+  line(`egring ${g}`, g > 0 ? get(outAt, g) : []);
+  egCount++;
+}
+console.log(`done ${count} ${egCount}`);

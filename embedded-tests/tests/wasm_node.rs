@@ -1,10 +1,12 @@
 //! The WASM module under node (issue 4): build `wasm/` for
 //! `wasm32-unknown-unknown`, run `wasm/demo.mjs` (which instantiates it with no
 //! imports, so a panic path left in the module fails here), and recompute
-//! every case with the native kernel: outputs, status codes and output counts
-//! must agree bit for bit in f64.
+//! every case — C²PS refinement and pole jet, EG d-nets and rings — with the
+//! native kernel: outputs, status codes and output counts must agree bit for
+//! bit in f64.
 
-use capdiv::{FirstStep, PolarNet, PoleJet};
+use capdiv::eg::{CNet, EgSubdivision};
+use capdiv::{Error, FirstStep, PolarNet, PoleJet};
 use capdiv_embedded_tests::{cargo_in, repo_root, run_with_limit};
 use std::process::Command;
 use std::time::Duration;
@@ -66,16 +68,111 @@ fn native(
     (out.len() as i32, out, j.len() as i32, j)
 }
 
-fn check(text: &str) -> usize {
+/// What the EG calls must return: (refine status, output, ring status, output).
+fn native_eg(center: [f64; 3], nodes: &[f64], steps: u32) -> (i32, Vec<f64>, i32, Vec<f64>) {
+    let fail = |e: Error| (codes::code(&e), vec![], codes::code(&e), vec![]);
+    let (points, rest) = nodes.as_chunks::<3>();
+    if !rest.is_empty() {
+        return fail(Error::WrongLength {
+            expected: nodes.len() - rest.len() + 3,
+            found: nodes.len(),
+        });
+    }
+    let net = match CNet::new(center, points) {
+        Ok(net) => net,
+        Err(e) => return fail(e),
+    };
+    let mut sub = match EgSubdivision::from_cnet(&net) {
+        Ok(sub) => sub,
+        Err(e) => return fail(e),
+    };
+    for _ in 0..steps {
+        if let Err(e) = sub.step() {
+            return fail(e);
+        }
+    }
+    let d = sub.net();
+    let mut out = vec![d.valence() as f64];
+    out.extend(d.c0().0);
+    for s in 0..d.valence() {
+        for j in 0..3 {
+            for i in 0..4 {
+                out.extend(d.node(s, i, j).unwrap().0);
+            }
+        }
+    }
+    let mut ring = vec![];
+    for k in 0..sub.ring_len() {
+        let patch = sub.ring_patch(k).unwrap();
+        for row in patch.points {
+            for p in row {
+                ring.extend(p.0);
+            }
+        }
+    }
+    (out.len() as i32, out, ring.len() as i32, ring)
+}
+
+fn check(text: &str) -> (usize, usize) {
     let mut lines = text.lines();
     let mut cases = 0;
+    let mut eg_cases = 0;
     let mut errors = 0;
     loop {
-        let head = lines.next().expect("demo output ends with `cases N`");
+        let head = lines.next().expect("demo output ends with `done N M`");
         let w: Vec<&str> = head.split(' ').collect();
-        if w[0] == "cases" {
+        if w[0] == "done" {
             assert_eq!(w[1].parse::<usize>().unwrap(), cases);
+            assert_eq!(w[2].parse::<usize>().unwrap(), eg_cases);
             break;
+        }
+        if w[0] == "egcase" {
+            let steps: u32 = w[2].parse().unwrap();
+            let mut field = |tag: &str| -> Vec<&str> {
+                let l = lines
+                    .next()
+                    .unwrap_or_else(|| panic!("egcase {}: no {tag}", w[1]));
+                let v: Vec<&str> = l.split(' ').collect();
+                assert_eq!(v[0], tag, "egcase {}: {l:.80}", w[1]);
+                v
+            };
+            let center: [f64; 3] = f64s(&field("center")[1..]).try_into().unwrap();
+            let nodes = f64s(&field("nodes")[1..]);
+            assert_eq!(nodes.len(), w[3].parse::<usize>().unwrap());
+            let refine = field("egrefine");
+            let ring = field("egring");
+            let (r, out, g, ring_out) = native_eg(center, &nodes, steps);
+            assert_eq!(
+                refine[1].parse::<i32>().unwrap(),
+                r,
+                "egcase {}: status",
+                w[1]
+            );
+            assert_eq!(
+                ring[1].parse::<i32>().unwrap(),
+                g,
+                "egcase {}: ring status",
+                w[1]
+            );
+            let native_bits: Vec<u64> = out.iter().map(|x| x.to_bits()).collect();
+            assert_eq!(
+                bits(&refine[2..]),
+                native_bits,
+                "egcase {}: d-net differs from the native kernel",
+                w[1]
+            );
+            let native_bits: Vec<u64> = ring_out.iter().map(|x| x.to_bits()).collect();
+            assert_eq!(
+                bits(&ring[2..]),
+                native_bits,
+                "egcase {}: ring differs from the native kernel",
+                w[1]
+            );
+            if r < 0 {
+                errors += 1;
+            }
+            eg_cases += 1;
+            continue;
         }
         assert_eq!(w[0], "case", "{head}");
         let valence: usize = w[2].parse().unwrap();
@@ -120,9 +217,9 @@ fn check(text: &str) -> usize {
         }
         cases += 1;
     }
-    // The demo's error cases must have come back as errors (and matched).
-    assert!(errors >= 5, "only {errors} error cases");
-    cases
+    // The demo's error cases (5 C²PS, 3 EG) came back as errors (and matched).
+    assert!(errors >= 8, "only {errors} error cases");
+    (cases, eg_cases)
 }
 
 #[test]
@@ -136,7 +233,7 @@ fn wasm_under_node_matches_native_bit_for_bit() {
     assert_eq!(run.code, Some(0), "node failed: {}", run.stderr);
     let text = String::from_utf8(run.stdout).expect("text output");
     // Nets of capacity 1536 in f64 are 210 KiB: compare on a roomy stack.
-    let cases = std::thread::Builder::new()
+    let (cases, eg_cases) = std::thread::Builder::new()
         .stack_size(64 << 20)
         .spawn(move || check(&text))
         .unwrap()
@@ -144,7 +241,8 @@ fn wasm_under_node_matches_native_bit_for_bit() {
         .unwrap();
     let size = std::fs::metadata(&wasm).unwrap().len();
     eprintln!(
-        "wasm: {cases} cases bit-identical to native in {:.2?}; module {size} bytes",
+        "wasm: {cases} C²PS and {eg_cases} EG cases bit-identical to native in {:.2?}; \
+         module {size} bytes",
         run.elapsed
     );
 }

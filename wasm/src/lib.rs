@@ -11,6 +11,9 @@
 //! [`capdiv::PolarNet::from_flat`]): `pole` = 3 `f64`; `coords` = links 1..L,
 //! each `valence` points of `x, y, z`.
 //!
+//! An EG c-net (spec EG.md §1): `center` = 3 `f64`; `nodes` = `6n` points of
+//! `x, y, z`, sector by sector in the §1 order.
+//!
 //! Status: `≥ 0` success (the number of `f64` written), `< 0` an error
 //! ([`codes`]); on error nothing is written.
 //!
@@ -21,6 +24,7 @@
 
 pub mod codes;
 
+use capdiv::eg::{CNet, EgSubdivision};
 use capdiv::{Error, FirstStep, PolarNet, PoleJet};
 use codes::{code, BAD_BUFFER};
 
@@ -183,6 +187,118 @@ pub unsafe extern "C" fn capdiv_c2ps_jet(
         Err(Error::Degenerate) => 18,
         Err(e) => code(&e),
     }
+}
+
+/// Builds the c-net (§1) from `center` and `nodes` (`6n` points, §1 order, as
+/// `x, y, z`) and refines it `steps` times with EG (its built-in rule: n = 3,
+/// 5, or the regular rules for n = 4).
+fn eg_refined(
+    center: Option<&[f64]>,
+    nodes: Option<&[f64]>,
+    steps: u32,
+) -> Result<EgSubdivision<'static, f64>, i32> {
+    let (Some(center), Some(nodes)) = (center, nodes) else {
+        return Err(BAD_BUFFER);
+    };
+    let Ok(center) = <[f64; 3]>::try_from(center) else {
+        return Err(BAD_BUFFER);
+    };
+    let (points, rest) = nodes.as_chunks::<3>();
+    if !rest.is_empty() {
+        return Err(code(&Error::WrongLength {
+            expected: nodes.len() - rest.len() + 3,
+            found: nodes.len(),
+        }));
+    }
+    let net = CNet::new(center, points).map_err(|e| code(&e))?;
+    let mut sub = EgSubdivision::from_cnet(&net).map_err(|e| code(&e))?;
+    for _ in 0..steps {
+        sub.step().map_err(|e| code(&e))?;
+    }
+    Ok(sub)
+}
+
+/// Writes `values` to the caller's `out` (`out_len` available); the count, or
+/// [`BAD_BUFFER`].
+///
+/// # Safety
+/// `out` → `out_len` writable `f64`, disjoint from any input.
+unsafe fn emit(
+    out: *mut f64,
+    out_len: usize,
+    values: impl Iterator<Item = f64>,
+    count: usize,
+) -> i32 {
+    // SAFETY: forwarded caller contract.
+    let Some(out) = (unsafe { output(out, out_len) }) else {
+        return BAD_BUFFER;
+    };
+    let Some(out) = out.get_mut(..count) else {
+        return BAD_BUFFER;
+    };
+    for (d, s) in out.iter_mut().zip(values) {
+        *d = s;
+    }
+    count as i32
+}
+
+/// EG (spec EG.md): builds the c-net `center`, `nodes` (`6n` points, §1
+/// order), refines it `steps` times (§5, §6) and writes
+/// `[n, c0 x y z, d-net: n sectors × 12 nodes (§2 order)]`, `4 + 36n` `f64`.
+///
+/// # Safety
+/// `center` → 3 readable `f64`; `nodes` → `nodes_len`; `out` → `out_len`
+/// writable `f64`, disjoint from the inputs.
+#[no_mangle]
+pub unsafe extern "C" fn capdiv_eg_refine(
+    center: *const f64,
+    nodes: *const f64,
+    nodes_len: usize,
+    steps: u32,
+    out: *mut f64,
+    out_len: usize,
+) -> i32 {
+    // SAFETY: forwarded caller contract.
+    let (center, nodes) = unsafe { (input(center, 3), input(nodes, nodes_len)) };
+    let sub = match eg_refined(center, nodes, steps) {
+        Ok(sub) => sub,
+        Err(c) => return c,
+    };
+    let d = sub.net();
+    let n = d.valence();
+    let head = [n as f64].into_iter().chain(d.c0().0);
+    let body = d.sectors().iter().flatten().flat_map(|p| p.0);
+    // SAFETY: forwarded caller contract.
+    unsafe { emit(out, out_len, head.chain(body), 4 + 36 * n) }
+}
+
+/// EG: as [`capdiv_eg_refine`], then writes the last step's ring (§9): `3n`
+/// bi-4 Bézier patches of 5×5 control points (`points[i][j]`, `j` fastest),
+/// `225n` `f64`; 0 before the first step (no ring yet).
+///
+/// # Safety
+/// As [`capdiv_eg_refine`].
+#[no_mangle]
+pub unsafe extern "C" fn capdiv_eg_ring(
+    center: *const f64,
+    nodes: *const f64,
+    nodes_len: usize,
+    steps: u32,
+    out: *mut f64,
+    out_len: usize,
+) -> i32 {
+    // SAFETY: forwarded caller contract.
+    let (center, nodes) = unsafe { (input(center, 3), input(nodes, nodes_len)) };
+    let sub = match eg_refined(center, nodes, steps) {
+        Ok(sub) => sub,
+        Err(c) => return c,
+    };
+    let count = 75 * sub.ring_len();
+    let values = sub
+        .ring_patches()
+        .flat_map(|patch| patch.points.into_iter().flatten().flat_map(|p| p.0));
+    // SAFETY: forwarded caller contract.
+    unsafe { emit(out, out_len, values, count) }
 }
 
 /// The capacity per link, [`CAP`]: `valence·2^steps` may not exceed it.
