@@ -72,14 +72,16 @@ fn formula_3_weights() {
     let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
     let mut want = Point3(ext.center) * (16.0 / 36.0);
     for s in 0..4 {
-        want = want + Point3(ext.at(s, 1, 0)) * (4.0 / 36.0) + Point3(ext.at(s, 1, 1)) * (1.0 / 36.0);
+        want =
+            want + Point3(ext.at(s, 1, 0)) * (4.0 / 36.0) + Point3(ext.at(s, 1, 1)) * (1.0 / 36.0);
     }
     assert!(c.limit().max_abs_diff(want) < 1e-14);
     let ext = ExtNet::random(3, &mut rng, 1.0);
     let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
     let mut want = Point3(ext.center) * (11.0 / 32.0);
     for s in 0..3 {
-        want = want + Point3(ext.at(s, 1, 0)) * (1.0 / 6.0) + Point3(ext.at(s, 1, 1)) * (5.0 / 96.0);
+        want =
+            want + Point3(ext.at(s, 1, 0)) * (1.0 / 6.0) + Point3(ext.at(s, 1, 1)) * (5.0 / 96.0);
     }
     assert!(c.limit().max_abs_diff(want) < 1e-14);
 }

@@ -169,7 +169,13 @@ fn builtin_table_as_user_table() {
 fn expansion_matches_listing_and_symmetry() {
     for n in [3usize, 5] {
         let t = RuleTable::builtin(n).unwrap();
-        for node in [InnerNode::D11, InnerNode::D22, InnerNode::D21, InnerNode::D31, InnerNode::D32] {
+        for node in [
+            InnerNode::D11,
+            InnerNode::D22,
+            InnerNode::D21,
+            InnerNode::D31,
+            InnerNode::D32,
+        ] {
             for (r, row) in t.listed(node).iter().enumerate() {
                 assert_eq!(t.row(node, r).unwrap(), *row);
             }
@@ -192,7 +198,10 @@ fn expansion_matches_listing_and_symmetry() {
         if n == 3 {
             let listed: i32 = t.listed(InnerNode::D11).iter().flatten().sum();
             let row2: i32 = t.row(InnerNode::D11, 2).unwrap().iter().sum();
-            assert_eq!(t.c0_weight(InnerNode::D11).unwrap(), 100_000 - listed - row2);
+            assert_eq!(
+                t.c0_weight(InnerNode::D11).unwrap(),
+                100_000 - listed - row2
+            );
         }
     }
 }
