@@ -76,6 +76,12 @@ fn cnet_errors() {
         CNet::from_flat(e, &coords[..36]).unwrap_err(),
         Error::ValenceTooSmall { valence: 2 }
     );
+    // Finite c-net whose raised d-net overflows: rejected when the cap starts.
+    let mut far = nodes.clone();
+    far.iter_mut().for_each(|p| p[0] = 1.5e308);
+    let c = CNet::new([-1.5e308, 0.0, 0.0], &far).unwrap();
+    assert!(!c.to_dnet().is_finite());
+    assert_eq!(EgSubdivision::from_cnet(&c).unwrap_err(), Error::NonFinite);
     // n = 4 cap only for n = 4.
     let c5 = CNet::new(e, &nodes).unwrap();
     assert_eq!(

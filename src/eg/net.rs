@@ -178,7 +178,10 @@ impl<R: Real> CNet<R> {
         e + acc
     }
 
-    /// The d-net `R c` (§3) with `c0` by (3).
+    /// The d-net `R c` (§3) with `c0` by (3). Convex combinations of the
+    /// c-net, so finite unless differences of coordinates overflow (|c| near
+    /// the type's maximum); [`EgSubdivision::new`](super::EgSubdivision::new)
+    /// rejects such a net with [`Error::NonFinite`].
     pub fn to_dnet(&self) -> DNet<R> {
         let e = self.center;
         let mut sectors: Vec<DSector<R>, MAX_VALENCE> = Vec::new();

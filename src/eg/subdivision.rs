@@ -28,8 +28,14 @@ impl<R: Real> EgSubdivision<'static, R> {
     /// Starts from a d-net with the built-in rule of its valence: the §7
     /// table for n = 3, 5; the regular rules for n = 4 (see
     /// [`EgSubdivision::step`]). [`Error::ValenceUnsupported`] for n = 6..10,
-    /// whose rules must come from the caller ([`EgSubdivision::with_table`]).
+    /// whose rules must come from the caller ([`EgSubdivision::with_table`]);
+    /// [`Error::NonFinite`] for a net with a non-finite node (only
+    /// [`CNet::to_dnet`] of a c-net whose coordinate differences overflow can
+    /// make one).
     pub fn new(net: DNet<R>) -> Result<Self, Error> {
+        if !net.is_finite() {
+            return Err(Error::NonFinite);
+        }
         let n = net.valence();
         let table = RuleTable::builtin(n);
         if table.is_none() && n != 4 {
@@ -47,8 +53,11 @@ impl<R: Real> EgSubdivision<'static, R> {
 impl<'t, R: Real> EgSubdivision<'t, R> {
     /// Starts from a d-net with a checked table of the same valence
     /// ([`RuleTable::new`] or [`RuleTable::builtin`]); [`Error::TableShape`]
-    /// when the valences differ.
+    /// when the valences differ, [`Error::NonFinite`] as in [`EgSubdivision::new`].
     pub fn with_table(net: DNet<R>, table: RuleTable<'t>) -> Result<Self, Error> {
+        if !net.is_finite() {
+            return Err(Error::NonFinite);
+        }
         if table.valence() != net.valence() {
             return Err(Error::TableShape);
         }
