@@ -386,7 +386,7 @@ fn cortex_m0_matches_f64() {
         target,
         "microbit",
         None,
-        "--no-default-features --features c2ps",
+        "--no-default-features --features c2ps,api-check",
         c2ps,
     );
     let eg = Workloads {
@@ -397,7 +397,7 @@ fn cortex_m0_matches_f64() {
         target,
         "microbit",
         None,
-        "--no-default-features --features eg",
+        "--no-default-features --features eg,api-check",
         eg,
     );
 }

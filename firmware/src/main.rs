@@ -18,6 +18,7 @@ mod report;
 #[allow(dead_code)] // each workload uses its own part
 mod sample;
 mod stack;
+#[cfg(feature = "api-check")]
 mod surface;
 
 #[cfg(feature = "c2ps")]
@@ -31,6 +32,7 @@ use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
 #[entry]
 fn main() -> ! {
     defmt::println!("start");
+    #[cfg(feature = "api-check")]
     surface::link();
     #[allow(unused_mut)]
     let mut ok = true;
