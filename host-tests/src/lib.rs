@@ -1,1 +1,25 @@
-//! Independent std, f64 reference implementation (filled in by the reference work).
+//! `capdiv-reference`: an independent, `std`, `f64` reference implementation of
+//! the C²PS scheme (spec `C2PS.md`), written straight from the paper's formulas
+//! and sharing no code with the `capdiv` kernel, plus the property tests (in
+//! `tests/`) that hold the kernel to it.
+//!
+//! - [`vec3`]: the few vector operations on `[f64; 3]` everything uses.
+//! - [`polar`]: a polar configuration as `Vec<Vec<[f64; 3]>>` (spec §1).
+//! - [`c2ps`]: one C²PS step as the literal O(n²) sums of rules (1)–(5), (29)
+//!   with the weights of eq. (4), and the first-step variant (spec §2).
+//! - [`rts`]: RTS (spec §3) literally and as a dense matrix, and its spectrum.
+//! - [`bezier`]: B-spline → Bézier conversion and Bernstein-sum evaluation (spec §5).
+//! - [`ring`]: the surface ring of a configuration (spec §5).
+//! - [`jet`]: eigencoefficients, closed forms, Taylor quadratic, curvatures (spec §4).
+//! - [`eg`]: the EG subdivision matrix straight from spec `EG.md` §5–§7.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod bezier;
+pub mod c2ps;
+pub mod eigen;
+pub mod jet;
+pub mod polar;
+pub mod ring;
+pub mod rts;
+pub mod vec3;
