@@ -14,11 +14,20 @@ use core::hint::black_box;
 #[inline(never)]
 pub fn link() {
     if black_box(false) {
+        // Both scalar types: the firmware computes in f32, the WASM module
+        // and hosts in f64; the generic code is instantiated per type.
         #[cfg(feature = "c2ps")]
-        c2ps::all();
+        {
+            c2ps::all::<f32>();
+            c2ps::all::<f64>();
+        }
         #[cfg(feature = "eg")]
-        eg::all();
-        common::all();
+        {
+            eg::all::<f32>();
+            eg::all::<f64>();
+        }
+        common::all::<f32>();
+        common::all::<f64>();
     }
 }
 
@@ -27,12 +36,12 @@ mod common {
     use super::black_box;
     use capdiv::bezier::bspline_to_bezier_cubic;
     use capdiv::trig::{primitive_root, RootsOfUnity};
-    use capdiv::{BicubicPatch, BiquarticPatch, Point3};
+    use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 
     #[inline(never)]
-    pub fn all() {
-        let p = black_box(Point3::<f32>::ZERO);
-        let (u, v) = black_box((0.5f32, 0.5f32));
+    pub fn all<R: Real>() {
+        let p = black_box(Point3::<R>::ZERO);
+        let (u, v) = black_box((R::ratio(1, 2), R::ratio(1, 2)));
         let cubic = BicubicPatch {
             points: bspline_to_bezier_cubic(&black_box([[p; 4]; 4])),
         };
@@ -44,7 +53,7 @@ mod common {
         };
         let _ = black_box(quartic.evaluate(u, v).map(|e| e.normal()));
         let _ = black_box(primitive_root(black_box(12)));
-        if let Ok(mut ring) = RootsOfUnity::<f32, 96>::new(black_box(6)) {
+        if let Ok(mut ring) = RootsOfUnity::<R, 96>::new(black_box(6)) {
             let _ = black_box(ring.get(black_box(7)));
             let _ = black_box(ring.double());
         }
@@ -56,22 +65,24 @@ mod common {
 #[cfg(feature = "c2ps")]
 mod c2ps {
     use super::black_box;
-    use capdiv::{FirstStep, OuterRegion, PolarNet, PoleJet};
+    use capdiv::{FirstStep, OuterRegion, PolarNet, PoleJet, Real};
 
     /// Small enough that this never-run code costs no stack to speak of.
-    type Net = PolarNet<f32, 24>;
+    type Net<R> = PolarNet<R, 24>;
 
     #[inline(never)]
-    pub fn all() {
-        let pole = black_box([0.0f32; 3]);
-        let pts: &[[f32; 3]] = black_box(&[[0.0; 3]; 21]);
+    pub fn all<R: Real>() {
+        let pole = black_box([R::ZERO; 3]);
+        let store = [[R::ZERO; 3]; 21];
+        let pts: &[[R; 3]] = black_box(&store);
         let len = black_box(3);
-        let links: [&[[f32; 3]]; 7] = black_box([pts; 7]).map(|l| l.get(..len).unwrap_or(l));
-        let links: &[&[[f32; 3]]] = black_box(&links);
-        let flat: &[f32] = black_box(&[0.0; 63]);
+        let links: [&[[R; 3]]; 7] = black_box([pts; 7]).map(|l| l.get(..len).unwrap_or(l));
+        let links: &[&[[R; 3]]] = black_box(&links);
+        let flat_store = [R::ZERO; 63];
+        let flat: &[R] = black_box(&flat_store);
         for mut net in [
-            Net::new(pole, links),
-            Net::from_flat(pole, black_box(3), flat),
+            Net::<R>::new(pole, links),
+            Net::<R>::from_flat(pole, black_box(3), flat),
         ]
         .into_iter()
         .flatten()
@@ -100,14 +111,16 @@ mod c2ps {
 mod eg {
     use super::black_box;
     use capdiv::eg::{lambda_catmull_clark, CNet, DNet, EgSubdivision, InnerNode, RuleTable};
+    use capdiv::Real;
 
     #[inline(never)]
-    pub fn all() {
-        let center = black_box([0.0f32; 3]);
-        let nodes: &[[f32; 3]] = black_box(&[[0.0; 3]; 120]);
+    pub fn all<R: Real>() {
+        let center = black_box([R::ZERO; 3]);
+        let node_store = [[R::ZERO; 3]; 120];
+        let nodes: &[[R; 3]] = black_box(&node_store);
         let len = black_box(18);
         let nodes = nodes.get(..len).unwrap_or(nodes);
-        let c0 = black_box(Some([0.0f32; 3]));
+        let c0 = black_box(Some([R::ZERO; 3]));
         if let Ok(c) = CNet::new(center, nodes) {
             let _ = black_box((c.limit(), c.regular_cap(), c.sector(black_box(1))));
             let d = c.to_dnet();
@@ -115,13 +128,13 @@ mod eg {
             let _ = black_box(d.refined(None));
             let _ = black_box(CNet::from_sectors(
                 center,
-                black_box(&[[[0.0f32; 3]; 6]; 3]),
+                black_box(&[[[R::ZERO; 3]; 6]; 3]),
             ));
         }
         if let Ok(d) = DNet::new(nodes, c0) {
             let table = RuleTable::builtin(black_box(3));
             let _ = black_box(d.refined(table.as_ref()));
-            let _ = black_box(DNet::from_sectors(black_box(&[[[0.0f32; 3]; 12]; 3]), c0));
+            let _ = black_box(DNet::from_sectors(black_box(&[[[R::ZERO; 3]; 12]; 3]), c0));
             if let Some(t) = table {
                 let node = black_box(InnerNode::ALL[1]);
                 let _ = black_box((t.row(node, black_box(2)), t.c0_weight(node)));
