@@ -31,6 +31,7 @@ pub enum FirstStep {
 
 /// A polar configuration of valence `n·2^level`, capacity `CAP` per link.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct PolarNet<R, const CAP: usize> {
     pub(crate) pole: Point3<R>,
     /// Links 1..5 in slots 0..4; slots at and beyond `held` are empty.

@@ -17,6 +17,7 @@ use crate::real::Real;
 
 /// The outer region of a level-0 configuration, borrowed from the caller.
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct OuterRegion<'a, R, L> {
     links: &'a [L],
     valence: usize,

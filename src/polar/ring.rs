@@ -65,6 +65,7 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
 
 /// Iterator over the patches of one ring.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RingPatches<'a, R, const CAP: usize> {
     net: &'a PolarNet<R, CAP>,
     next: usize,

@@ -12,6 +12,7 @@ use heapless::{Vec, VecView};
 
 /// The `N`-th roots of unity as `[cos, sin]` pairs, capacity `CAP`.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RootsOfUnity<R, const CAP: usize> {
     ring: Vec<[R; 2], CAP>,
     /// `(cos, sin)(2π/N)` in `f64`, the seed of the next doubling.
