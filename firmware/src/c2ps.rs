@@ -151,6 +151,8 @@ fn rts() -> Result<(), Failure> {
     for (j, p) in net.link(1).unwrap_or(&[]).iter().enumerate() {
         point("rtslink", &[j], *p);
     }
+    // The whole net through the kernel's `defmt::Format` (for a human reader).
+    defmt::println!("rtsnet {}", net);
     Ok(())
 }
 
