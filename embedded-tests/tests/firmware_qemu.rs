@@ -1,8 +1,10 @@
 //! The firmware under QEMU (issue 4): build it, run it with a time limit,
 //! decode its defmt log and compare every number it reports with the same
-//! computation in `f64` on the host (the kernel's `f64` path; the sample's
-//! inputs are exact in both types, so the difference is the firmware's `f32`
-//! rounding alone).
+//! computation in `f64` on the host: the kernel's `f64` path for every number,
+//! and for the C²PS numbers also the independent reference crate
+//! (`capdiv-reference`: the paper's literal O(n²) sums with `std` cos, Bernstein
+//! evaluation). The sample's inputs are exact in both types, so the difference
+//! is the firmware's `f32` rounding.
 //!
 //! A kernel error, a fault, a hang (time limit), a missing or extra line or a
 //! number outside the tolerance fails the test.
@@ -173,6 +175,77 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
 /// EG steps the firmware applies to each sample (spec EG.md; issue 4: n = 3, 5).
 const EG_STEPS: u32 = 4;
 
+/// The C²PS numbers of `firmware/src/c2ps.rs` from the independent reference
+/// crate (no kernel code): pole, jets, geometry, links, ring patches, RTS.
+fn c2ps_independent(depth: u32) -> BTreeMap<String, Entry> {
+    use capdiv_reference::c2ps::{refine, TwoLinkRule};
+    use capdiv_reference::polar::Polar;
+    use capdiv_reference::{bezier, jet, ring, rts, vec3};
+    let mut out = BTreeMap::new();
+    let mut add = |key: &str, idx: &[usize], vals: Vec<f64>| {
+        let e = Entry::new(key, idx, &vals);
+        out.insert(e.id(), e);
+    };
+    let cfg0 = Polar::new(POLE, LINKS[..5].iter().map(|l| l.to_vec()).collect());
+    for (k, q) in jet::coefficients(&cfg0).iter().enumerate() {
+        add("jet0", &[k], q.to_vec());
+    }
+    let levels = refine(&cfg0, depth, TwoLinkRule::Uniform);
+    for (m, cfg) in levels.iter().enumerate().skip(1) {
+        add("pole", &[m], cfg.pole.to_vec());
+    }
+    let cfg = levels.last().unwrap();
+    let p = jet::coefficients(cfg);
+    for (k, q) in p.iter().enumerate() {
+        add("jet", &[k], q.to_vec());
+    }
+    add("limit", &[], p[0].to_vec());
+    let g = jet::geometry(&p).unwrap();
+    add("normal", &[], g.normal.to_vec());
+    add(
+        "curv",
+        &[],
+        vec![g.gaussian, g.mean, g.principal[0], g.principal[1]],
+    );
+    let n = cfg.valence();
+    for i in 1..=5 {
+        for j in [0, 1, n / 2, n - 1] {
+            add("link", &[i, j], cfg.q(i, j).to_vec());
+        }
+    }
+    for (span, col, ui, vi) in [(0, 0, 2, 2), (1, n - 1, 1, 3), (0, n / 3, 4, 0)] {
+        let patch = ring::patch(cfg, span, col);
+        let (u, v) = (quarter(ui), quarter(vi));
+        let id = [span, col, ui, vi];
+        let du = bezier::eval(&patch, u, v, 1, 0);
+        let dv = bezier::eval(&patch, u, v, 0, 1);
+        add("ringpos", &id, bezier::eval(&patch, u, v, 0, 0).to_vec());
+        add("ringdu", &id, du.to_vec());
+        add("ringdv", &id, dv.to_vec());
+        let c = vec3::cross(du, dv);
+        add("ringnrm", &id, vec3::scale(1.0 / vec3::norm(c), c).to_vec());
+    }
+    let mut sum = vec3::ZERO;
+    for span in 0..2 {
+        for col in 0..n {
+            sum = vec3::add(
+                sum,
+                bezier::eval(&ring::patch(cfg, span, col), 0.5, 0.5, 0, 0),
+            );
+        }
+    }
+    add("ringsum", &[], sum.to_vec());
+    let mut r = cfg0.clone();
+    for k in 1..=3 {
+        r = rts::step(&r);
+        add("rtspole", &[k], r.pole.to_vec());
+    }
+    for j in 0..VALENCE {
+        add("rtslink", &[j], r.q(1, j).to_vec());
+    }
+    out
+}
+
 /// Unit roundoff of `f32`, `2⁻²⁴`.
 const U: f64 = 1.0 / (1u64 << 24) as f64;
 
@@ -226,6 +299,8 @@ fn check_log(lines: &[String], w: Workloads) -> Checked {
         "the firmware did not finish cleanly:\n{lines:#?}"
     );
     let mut expected = reference(w);
+    let independent = w.c2ps.map(c2ps_independent).unwrap_or_default();
+    let mut independent_checked = 0;
     let mut worst: BTreeMap<String, f64> = BTreeMap::new();
     let mut abs_worst: BTreeMap<String, f64> = BTreeMap::new();
     let mut stack = None;
@@ -271,6 +346,17 @@ fn check_log(lines: &[String], w: Workloads) -> Checked {
         let want = expected
             .remove(&got.id())
             .unwrap_or_else(|| panic!("unexpected or repeated line {line:?}"));
+        if let Some(indep) = independent.get(&got.id()) {
+            assert_eq!(got.vals.len(), indep.vals.len(), "{line:?} vs {indep:?}");
+            for (g, r) in got.vals.iter().zip(&indep.vals) {
+                let (err, tol) = ((g - r).abs(), tolerance(&got.key, *r));
+                assert!(
+                    err <= tol,
+                    "{line:?}: firmware {g} vs capdiv-reference {r}: |diff| {err:e} > tolerance {tol:e}"
+                );
+            }
+            independent_checked += 1;
+        }
         assert_eq!(got.vals.len(), want.vals.len(), "{line:?} vs {want:?}");
         for (g, w) in got.vals.iter().zip(&want.vals) {
             let err = (g - w).abs();
@@ -300,6 +386,13 @@ fn check_log(lines: &[String], w: Workloads) -> Checked {
     );
     let mut net_bytes = 0;
     if let Some(depth) = w.c2ps {
+        // Every C²PS line but the outer region's has an independent value.
+        assert_eq!(
+            independent_checked,
+            independent.len(),
+            "C²PS lines without a capdiv-reference comparison"
+        );
+        eprintln!("  {independent_checked} C²PS lines also match capdiv-reference");
         assert!(geometry, "no defmt::Format line for PoleGeometry");
         let cfg = cfg.expect("cfg line");
         assert_eq!(
