@@ -162,6 +162,15 @@ mod eg {
                 black_box((sub.c0(), sub.level(), sub.net(), sub.previous()));
             }
         }
+        let flat_store = [R::ZERO; 360];
+        let flat: &[R] = black_box(&flat_store);
+        let flat = flat.get(..black_box(54)).unwrap_or(flat);
+        let _ = black_box(CNet::from_flat(center, flat).map(|c| c.limit()));
+        if let Ok(d) = DNet::from_flat(flat, c0) {
+            if let Ok(sub) = EgSubdivision::new(d) {
+                let _ = black_box(sub.ring_patch_domain(black_box(1)));
+            }
+        }
         black_box(lambda_catmull_clark(black_box(7)));
     }
 }
