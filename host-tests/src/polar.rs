@@ -60,9 +60,9 @@ impl Polar {
     }
 
     /// The image under `x ↦ M x + t`.
-    pub fn affine(&self, m: &[[f64; 3]; 3], t: P3) -> Polar {
+    pub fn affine(&self, m: &[[f64; 3]; 3], t: &P3) -> Polar {
         let f = |p: P3| -> P3 {
-            let mut o = t;
+            let mut o = *t;
             for (r, row) in m.iter().enumerate() {
                 o[r] += row[0] * p[0] + row[1] * p[1] + row[2] * p[2];
             }
