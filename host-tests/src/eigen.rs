@@ -19,18 +19,28 @@ pub fn eigenvalues(a: &DMatrix<f64>) -> Option<Vec<Complex<f64>>> {
         return Some(Vec::new());
     }
     let h = nalgebra::linalg::Hessenberg::new(a.clone()).unpack_h();
-    // 1-based copy, as in the published algorithm.
-    let mut m = vec![vec![0.0f64; n + 1]; n + 1];
-    for i in 0..n {
-        for j in 0..n {
-            // Entries below the subdiagonal are zero up to round-off; drop them.
-            m[i + 1][j + 1] = if i > j + 1 { 0.0 } else { h[(i, j)] };
+    // Rarely (RTS, n = 56) the iteration stalls on a cluster of exact zero
+    // eigenvalues; the spectrum of `H + σI` is that of `H` moved by σ, and the
+    // move changes the iteration's path, so a few diagonal shifts are tried.
+    for sigma in [0.0, 0.3, -0.2, 0.7] {
+        // 1-based copy, as in the published algorithm.
+        let mut m = vec![vec![0.0f64; n + 1]; n + 1];
+        for i in 0..n {
+            for j in 0..n {
+                // Entries below the subdiagonal are zero up to round-off; drop them.
+                m[i + 1][j + 1] = if i > j + 1 { 0.0 } else { h[(i, j)] };
+            }
+            m[i + 1][i + 1] += sigma;
+        }
+        if let Some((wr, wi)) = hqr(&mut m, n) {
+            let mut ev: Vec<Complex<f64>> = (1..=n)
+                .map(|i| Complex::new(wr[i] - sigma, wi[i]))
+                .collect();
+            ev.sort_by(|x, y| y.norm().total_cmp(&x.norm()));
+            return Some(ev);
         }
     }
-    let (wr, wi) = hqr(&mut m, n)?;
-    let mut ev: Vec<Complex<f64>> = (1..=n).map(|i| Complex::new(wr[i], wi[i])).collect();
-    ev.sort_by(|x, y| y.norm().total_cmp(&x.norm()));
-    Some(ev)
+    None
 }
 
 fn sign(a: f64, b: f64) -> f64 {
