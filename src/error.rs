@@ -100,7 +100,10 @@ impl core::fmt::Display for Error {
             Error::TableSymmetry => write!(f, "rule table violates the EG symmetries"),
             Error::TableRowSum => write!(f, "rule table rows do not sum as required"),
             Error::TableSpectrum => {
-                write!(f, "rule table's subdominant eigenvalue is not Catmull-Clark's")
+                write!(
+                    f,
+                    "rule table's subdominant eigenvalue is not Catmull-Clark's"
+                )
             }
         }
     }

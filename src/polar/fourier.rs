@@ -40,6 +40,9 @@ impl<R: Real> Fourier<R> {
             f.c2 += *q * c2;
             f.s2 += *q * s2;
         }
+        if n == 0 {
+            return f; // an empty net: all sums zero
+        }
         let inv = R::ONE / R::from_f64(n as f64);
         f.a = f.a * inv;
         f.c1 = f.c1 * inv;

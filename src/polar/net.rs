@@ -73,6 +73,20 @@ pub(crate) fn validate<R: Real, L: AsRef<[[R; 3]]>>(
 }
 
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
+    /// An empty net (valence 0, no links), usable in a `static`: fill it in
+    /// place with [`Self::reset`]. On an empty net [`Self::step`] returns
+    /// [`Error::NotEnoughLinks`] and [`Self::rts_step`] does nothing.
+    pub const fn empty() -> Self {
+        PolarNet {
+            pole: Point3([R::ZERO; 3]),
+            links: [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()],
+            held: 0,
+            roots: RootsOfUnity::empty(),
+            level: 0,
+            base_valence: 0,
+        }
+    }
+
     /// Builds a net from the pole and links `links[0]` = 1-link, … (each a
     /// closed ring of `n ≥ 3` points, counter-clockwise). At least 2 links;
     /// links beyond the 5th are checked but not stored (they only shape the
@@ -83,33 +97,51 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// [`Error::NonFinite`], [`Error::CapacityExceeded`] (`n > CAP`),
     /// [`Error::ValenceUnsupported`] (odd part of `n` above
     /// [`crate::trig::MAX_ODD_PART`]).
+    ///
+    /// The net is returned by value: where stack is scarce (a microcontroller),
+    /// keep an [`Self::empty`] net in a `static` and [`Self::reset`] it instead.
     pub fn new<L: AsRef<[[R; 3]]>>(pole: [R; 3], links: &[L]) -> Result<Self, Error> {
+        let mut net = Self::empty();
+        net.reset(pole, links)?;
+        Ok(net)
+    }
+
+    /// [`Self::new`] in place: loads a level-0 configuration into this net,
+    /// whatever it held. Every check runs before anything is written, so on
+    /// error the net is unchanged. Stack use is a few words, whatever `CAP` is.
+    pub fn reset<L: AsRef<[[R; 3]]>>(&mut self, pole: [R; 3], links: &[L]) -> Result<(), Error> {
         let n = validate(&pole, links)?;
-        let roots = RootsOfUnity::new(n)?;
-        let mut net = PolarNet {
-            pole: Point3(pole),
-            links: core::array::from_fn(|_| Vec::new()),
-            held: 0,
-            roots,
-            level: 0,
-            base_valence: n,
-        };
-        for (slot, l) in net.links.iter_mut().zip(links.iter()) {
-            for p in l.as_ref() {
-                // Cannot fail: n <= CAP was checked by RootsOfUnity::new.
-                slot.push(Point3(*p)).map_err(|_| Error::CapacityExceeded {
-                    needed: n,
-                    capacity: CAP,
-                })?;
+        RootsOfUnity::<R, CAP>::check(n)?;
+        self.roots.reset(n)?;
+        for (k, slot) in self.links.iter_mut().enumerate() {
+            slot.clear();
+            if let Some(l) = links.get(k) {
+                for p in l.as_ref() {
+                    // Cannot fail: n <= CAP was checked above.
+                    slot.push(Point3(*p)).map_err(|_| Error::CapacityExceeded {
+                        needed: n,
+                        capacity: CAP,
+                    })?;
+                }
             }
         }
-        net.held = links.len().min(MAX_STORED_LINKS);
-        Ok(net)
+        self.pole = Point3(pole);
+        self.held = links.len().min(MAX_STORED_LINKS);
+        self.level = 0;
+        self.base_valence = n;
+        Ok(())
     }
 
     /// Builds a net from flat coordinates: `coords` holds `links·valence` points
     /// as `x, y, z` triples, link by link (the layout of the C ABI).
     pub fn from_flat(pole: [R; 3], valence: usize, coords: &[R]) -> Result<Self, Error> {
+        let mut net = Self::empty();
+        net.reset_flat(pole, valence, coords)?;
+        Ok(net)
+    }
+
+    /// [`Self::from_flat`] in place; on error the net is unchanged.
+    pub fn reset_flat(&mut self, pole: [R; 3], valence: usize, coords: &[R]) -> Result<(), Error> {
         if valence < 3 {
             return Err(Error::ValenceTooSmall { valence });
         }
@@ -133,10 +165,10 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
         for (i, l) in links.iter_mut().enumerate().take(stored) {
             // In range: i < stored <= count = pts.len() / valence. `get` only
             // spares the slice-index panic path (an empty link would be
-            // rejected by `new` as a length mismatch).
+            // rejected by `reset` as a length mismatch).
             *l = pts.get(i * valence..(i + 1) * valence).unwrap_or(&[]);
         }
-        Self::new(pole, &links[..stored])
+        self.reset(pole, &links[..stored])
     }
 
     /// Current valence `N = n·2^level`.
@@ -183,6 +215,6 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// Links one step adds: with old links up to `K`, new links up to `2K−1`.
     #[inline]
     pub(crate) fn held_after_step(&self) -> usize {
-        (2 * self.held - 1).min(MAX_STORED_LINKS)
+        (2 * self.held).saturating_sub(1).min(MAX_STORED_LINKS)
     }
 }

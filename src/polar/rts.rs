@@ -12,6 +12,9 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One RTS step. Valence and level are unchanged; the links held grow as
     /// for C²PS (old links up to `K` give new links up to `2K−1`, at most 5).
     pub fn rts_step(&mut self) {
+        if self.held < 2 {
+            return; // an empty net: nothing to refine
+        }
         let new_held = self.held_after_step();
         let n = self.valence();
         let [l1, l2, l3, l4, l5] = &mut self.links;

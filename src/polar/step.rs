@@ -20,8 +20,15 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One C²PS step. `first` selects the first-step variant; it only matters
     /// on the net's first step (level 0), later steps always use rules (1)–(3).
     ///
-    /// [`Error::CapacityExceeded`] when `2N > CAP`; the net is then unchanged.
+    /// [`Error::CapacityExceeded`] when `2N > CAP`, [`Error::NotEnoughLinks`]
+    /// on an [`PolarNet::empty`] net; the net is then unchanged.
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
+        if self.held < 2 {
+            return Err(Error::NotEnoughLinks {
+                needed: 2,
+                held: self.held,
+            });
+        }
         let n = self.valence();
         if 2 * n > CAP {
             return Err(Error::CapacityExceeded {

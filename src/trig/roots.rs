@@ -20,8 +20,40 @@ pub struct RootsOfUnity<R, const CAP: usize> {
 }
 
 impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
+    /// An empty ring (valence 0), for statics; fill it with [`Self::reset`].
+    pub const fn empty() -> Self {
+        RootsOfUnity {
+            ring: Vec::new(),
+            primitive: (1.0, 0.0),
+        }
+    }
+
     /// The ring for valence `n`.
     pub fn new(n: usize) -> Result<Self, Error> {
+        let mut ring = Self::empty();
+        ring.reset(n)?;
+        Ok(ring)
+    }
+
+    /// Refills the ring in place for valence `n`; on error it is unchanged.
+    pub fn reset(&mut self, n: usize) -> Result<(), Error> {
+        Self::check(n)?;
+        // Odd part (or 4 for powers of two) by a short product chain, then doublings.
+        let odd = n >> n.trailing_zeros();
+        let base = if odd == 1 { 4 } else { odd };
+        let mut primitive =
+            super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
+        fill(self.ring.as_mut_view(), base, primitive)?;
+        while self.ring.len() < n {
+            primitive = double(self.ring.as_mut_view(), primitive)?;
+        }
+        self.primitive = primitive;
+        Ok(())
+    }
+
+    /// The errors [`Self::reset`] would return for valence `n`, without
+    /// touching anything.
+    pub fn check(n: usize) -> Result<(), Error> {
         if n < 3 {
             return Err(Error::ValenceTooSmall { valence: n });
         }
@@ -32,17 +64,7 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
             });
         }
         super::primitive_root(n).ok_or(Error::ValenceUnsupported { valence: n })?;
-        // Odd part (or 4 for powers of two) by a short product chain, then doublings.
-        let odd = n >> n.trailing_zeros();
-        let base = if odd == 1 { 4 } else { odd };
-        let mut primitive =
-            super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
-        let mut ring = Vec::new();
-        fill(ring.as_mut_view(), base, primitive)?;
-        while ring.len() < n {
-            primitive = double(ring.as_mut_view(), primitive)?;
-        }
-        Ok(RootsOfUnity { ring, primitive })
+        Ok(())
     }
 
     /// Valence `N` of the ring.
