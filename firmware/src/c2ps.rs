@@ -8,7 +8,7 @@
 
 use crate::report::{point, Failure};
 use crate::sample::{LINKS, LINKS_GIVEN, POLE, VALENCE};
-use capdiv::{Error, FirstStep, OuterRegion, PolarNet, PoleJet};
+use capdiv::{FirstStep, OuterRegion, PolarNet, PoleJet};
 
 /// Steps applied: 6 on the Cortex-M4 board, 3 on the 16 KiB micro:bit.
 #[cfg(not(armv6m))]
@@ -47,16 +47,16 @@ pub fn run() -> Result<(), Failure> {
     Ok(())
 }
 
-/// Builds the sample net into its static (`.bss`, size known at link time).
-/// `PolarNet::new` returns the net by value, so its frame holds temporaries
-/// of the net's size: kept out of line to free them before the refinement.
+/// Builds the sample net into its static (`.bss`, size known at link time):
+/// the const-constructed empty net is loaded in place by `PolarNet::reset`,
+/// so no net-sized temporary lives on the stack.
 #[inline(never)]
 fn build() -> Result<&'static mut Net, Failure> {
     let links = links();
     let stored = links.get(..STORED).unwrap_or(&[]);
-    let slot = cortex_m::singleton!(C2PS_NET: Result<Net, Error> = Net::new(pole(), stored))
-        .ok_or(Failure::Reused)?;
-    Ok(slot.as_mut().map_err(|e| *e)?)
+    let net = cortex_m::singleton!(C2PS_NET: Net = Net::empty()).ok_or(Failure::Reused)?;
+    net.reset(pole(), stored)?;
+    Ok(net)
 }
 
 /// Refines in place, reads the results out, logs them.

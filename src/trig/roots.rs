@@ -24,7 +24,9 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
     pub const fn empty() -> Self {
         RootsOfUnity {
             ring: Vec::new(),
-            primitive: (1.0, 0.0),
+            // All-zero bytes, so a static net lands in .bss; never read before
+            // `reset` (doubling an empty ring is a no-op).
+            primitive: (0.0, 0.0),
         }
     }
 
