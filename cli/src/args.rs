@@ -1,6 +1,6 @@
-//! The command line (clap derive). Option values are kept as small enums so
-//! that EG can add `--scheme eg` and a `spectrum` subcommand without touching
-//! the existing ones.
+//! The command line (clap derive). Option values are small enums; the scheme
+//! is optional and defaults to the one the input's `kind` calls for (`polar` →
+//! C²PS, `cnet`/`dnet` → EG).
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -10,7 +10,8 @@ use std::path::PathBuf;
 #[command(
     name = "capdiv",
     version,
-    about = "Smooth subdivision caps: C²PS polar subdivision (JSON in, JSON/OBJ/PNG out)",
+    about = "Smooth subdivision caps: C²PS polar and EG (Evolving Guide) subdivision \
+             (JSON in, JSON/OBJ/PNG out)",
     after_help = "Every failure prints one line 'error: …' on stderr and exits with status 2."
 )]
 pub struct Cli {
@@ -24,10 +25,12 @@ pub struct Cli {
 pub enum Command {
     /// Refine a configuration M steps and print the level-M configuration.
     Refine(RefineArgs),
-    /// Print the limit point, eigencoefficients, normal and curvatures at the pole.
+    /// Print the limit point (polar: also eigencoefficients, normal, curvatures).
     Pole(PoleArgs),
-    /// Print every Bézier patch from level 0 through ring M (JSON, OBJ or PNG).
+    /// Print the Bézier patches through ring M (JSON, OBJ or PNG).
     Patches(PatchesArgs),
+    /// Print the spectrum of the EG subdivision matrix of a valence.
+    Spectrum(SpectrumArgs),
     /// Refine built-in sample surfaces, write OBJ/PNG/JSON files, print a summary.
     Demo(DemoArgs),
 }
@@ -39,6 +42,19 @@ pub enum Scheme {
     C2ps,
     /// RTS, the stationary auxiliary scheme, valence kept (spec C2PS.md §3).
     Rts,
+    /// EG, Evolving Guide subdivision of a c-net or d-net (spec EG.md §5, §6).
+    Eg,
+}
+
+impl Scheme {
+    /// The name as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::C2ps => "c2ps",
+            Scheme::Rts => "rts",
+            Scheme::Eg => "eg",
+        }
+    }
 }
 
 /// Scalar type of the computation.
@@ -93,9 +109,10 @@ pub struct Io {
 /// `capdiv refine`.
 #[derive(Clone, Debug, Args)]
 pub struct RefineArgs {
-    /// Subdivision scheme.
-    #[arg(long, value_enum, default_value_t = Scheme::C2ps)]
-    pub scheme: Scheme,
+    /// Subdivision scheme [default: c2ps for a polar input, eg for a cnet or
+    /// dnet input].
+    #[arg(long, value_enum)]
+    pub scheme: Option<Scheme>,
     /// Number of steps M.
     #[arg(long, default_value_t = 1, value_name = "M")]
     pub steps: u32,
@@ -105,6 +122,10 @@ pub struct RefineArgs {
     /// First-step rule for the 2-link (C²PS only) [default: uniform].
     #[arg(long, value_enum)]
     pub first_step: Option<FirstStepArg>,
+    /// EG only: rule table of the input's valence (JSON, see `capdiv spectrum`);
+    /// needed for valences 6..10.
+    #[arg(long, value_name = "TABLE")]
+    pub table: Option<String>,
     /// Pretty-print the JSON.
     #[arg(long)]
     pub pretty: bool,
@@ -130,8 +151,9 @@ pub struct PoleArgs {
 /// `capdiv patches`.
 #[derive(Clone, Debug, Args)]
 pub struct PatchesArgs {
-    /// Deepest ring level M (a ring needs 5 links: with 2 input links rings
-    /// start at level 2, with 3 or 4 at level 1).
+    /// Deepest ring level M (polar: a ring needs 5 links, with 2 input links
+    /// rings start at level 2, with 3 or 4 at level 1; EG: the rings of steps
+    /// 1..M).
     #[arg(long, value_name = "M")]
     pub depth: u32,
     /// Output format.
@@ -144,15 +166,36 @@ pub struct PatchesArgs {
     /// Scalar type of the computation and of the printed numbers.
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     pub precision: Precision,
-    /// First-step rule for the 2-link.
-    #[arg(long, value_enum, default_value_t = FirstStepArg::Uniform)]
-    pub first_step: FirstStepArg,
+    /// First-step rule for the 2-link (polar inputs only) [default: uniform].
+    #[arg(long, value_enum)]
+    pub first_step: Option<FirstStepArg>,
+    /// EG only: rule table of the input's valence (needed for 6..10).
+    #[arg(long, value_name = "TABLE")]
+    pub table: Option<String>,
     /// Pretty-print the JSON.
     #[arg(long)]
     pub pretty: bool,
     /// Input and output.
     #[command(flatten)]
     pub io: Io,
+}
+
+/// `capdiv spectrum`.
+#[derive(Clone, Debug, Args)]
+pub struct SpectrumArgs {
+    /// The valence n (built-in rules: 3, 5; 4 is regular; others need --table).
+    #[arg(long, value_name = "N")]
+    pub valence: usize,
+    /// A rule table `{"valence", "A11", "A22", "A21", "A31", "A32"}` (spec
+    /// EG.md §7 format) instead of the built-in one; `-` reads stdin.
+    #[arg(long, value_name = "FILE")]
+    pub table: Option<String>,
+    /// Pretty-print the JSON.
+    #[arg(long)]
+    pub pretty: bool,
+    /// Write the output to this file (atomically) instead of standard output.
+    #[arg(short, long, value_name = "PATH")]
+    pub output: Option<PathBuf>,
 }
 
 /// `capdiv demo`.

@@ -1,5 +1,5 @@
 //! The CLI's error type. Every failure — usage, I/O, malformed JSON, wrong
-//! schema, unsupported kind, capacity, kernel error — is reported as exactly
+//! schema, wrong kind for the command, capacity, kernel error — is reported as exactly
 //! one line on stderr and exit status [`EXIT_FAILURE`].
 
 use core::fmt;
@@ -33,12 +33,15 @@ pub enum CliError {
         /// What is wrong.
         message: String,
     },
-    /// A valid input whose `kind` has no implementation yet (EG inputs).
-    Unsupported {
+    /// A valid input of a `kind` the command or scheme does not take (e.g.
+    /// `--scheme eg` on a `polar` input).
+    WrongKind {
         /// The input's name.
         source: String,
-        /// The `kind` tag.
+        /// The `kind` tag of the input.
         kind: &'static str,
+        /// What was needed, in words (`"--scheme eg needs a 'cnet' or 'dnet' input"`).
+        need: String,
     },
     /// The valence the job needs exceeds every compiled capacity tier.
     Capacity {
@@ -82,8 +85,8 @@ impl fmt::Display for CliError {
             CliError::Schema { source, message } => {
                 write!(f, "{source}: wrong schema: {message}")
             }
-            CliError::Unsupported { source, kind } => {
-                write!(f, "{source}: kind '{kind}' is not supported yet")
+            CliError::WrongKind { source, kind, need } => {
+                write!(f, "{source}: {need}, got kind '{kind}'")
             }
             CliError::Capacity { what, max } => write!(
                 f,

@@ -7,10 +7,18 @@
 //! ```
 //!
 //! `links[0]` is the 1-link; every link is a closed ring, counter-clockwise seen
-//! from the side the surface normal points to. The EG inputs `cnet` and `dnet`
-//! (spec EG.md) are parsed already, so that adding the EG commands only needs a
-//! new arm in the command dispatch; until then they are refused with
-//! [`CliError::Unsupported`]. Unknown fields are rejected.
+//! from the side the surface normal points to. The EG inputs (spec EG.md §1,
+//! §2):
+//!
+//! ```json
+//! {"kind": "cnet", "center": [x, y, z], "sectors": [[6 points], ...]}
+//! {"kind": "dnet", "sectors": [[12 points], ...], "c0": [x, y, z]}
+//! ```
+//!
+//! c-net sectors in the §1 order `(1,0) (2,0) (1,1) (2,1) (1,2) (2,2)`, d-net
+//! sectors in the §2 order `00 10 20 30 01 11 21 31 02 12 22 32`, sectors
+//! counter-clockwise; `c0` is optional (fitted by formula (4) when absent).
+//! Unknown fields are rejected.
 
 use crate::error::CliError;
 use serde::{Deserialize, Serialize};
@@ -26,10 +34,9 @@ pub enum Input {
     /// A polar configuration (C²PS).
     Polar(PolarInput),
     /// An EG control net around an extraordinary node: center and `n` sectors
-    /// of 6 points (spec EG.md). Not supported yet.
+    /// of 6 points (spec EG.md §1).
     Cnet(CnetInput),
-    /// An EG d-net: `n` sectors of 12 points, optional `c0` (spec EG.md). Not
-    /// supported yet.
+    /// An EG d-net: `n` sectors of 12 points, optional `c0` (spec EG.md §2).
     Dnet(DnetInput),
 }
 
@@ -74,14 +81,49 @@ impl Input {
         }
     }
 
-    /// The polar configuration, or [`CliError::Unsupported`] for other kinds.
-    pub fn into_polar(self, source: &str) -> Result<PolarInput, CliError> {
+    /// The polar configuration, or [`CliError::WrongKind`] (saying that
+    /// `who` needs a polar input) for other kinds.
+    pub fn into_polar(self, source: &str, who: &str) -> Result<PolarInput, CliError> {
         match self {
             Input::Polar(p) => Ok(p),
-            other => Err(CliError::Unsupported {
+            other => Err(CliError::WrongKind {
                 source: source.to_string(),
                 kind: other.kind(),
+                need: format!("{who} needs a 'polar' input"),
             }),
+        }
+    }
+
+    /// The EG input (c-net or d-net), or [`CliError::WrongKind`] (saying that
+    /// `who` needs one) for a polar input.
+    pub fn into_eg(self, source: &str, who: &str) -> Result<EgInput, CliError> {
+        match self {
+            Input::Cnet(c) => Ok(EgInput::Cnet(c)),
+            Input::Dnet(d) => Ok(EgInput::Dnet(d)),
+            other => Err(CliError::WrongKind {
+                source: source.to_string(),
+                kind: other.kind(),
+                need: format!("{who} needs a 'cnet' or 'dnet' input"),
+            }),
+        }
+    }
+}
+
+/// An EG input: a c-net or a d-net.
+#[derive(Clone, Debug, PartialEq)]
+pub enum EgInput {
+    /// `{"kind": "cnet", ...}`.
+    Cnet(CnetInput),
+    /// `{"kind": "dnet", ...}`.
+    Dnet(DnetInput),
+}
+
+impl EgInput {
+    /// The valence (number of sectors).
+    pub fn valence(&self) -> usize {
+        match self {
+            EgInput::Cnet(c) => c.sectors.len(),
+            EgInput::Dnet(d) => d.sectors.len(),
         }
     }
 }
@@ -133,13 +175,18 @@ impl Source {
 /// seen first), then into [`Input`] ([`CliError::Schema`]). Both messages carry
 /// serde_json's line and column.
 pub fn parse(name: &str, text: &str) -> Result<Input, CliError> {
+    parse_as(name, text)
+}
+
+/// [`parse`] into any deserialisable type (also used for rule tables).
+pub fn parse_as<T: serde::de::DeserializeOwned>(name: &str, text: &str) -> Result<T, CliError> {
     if let Err(e) = serde_json::from_str::<serde::de::IgnoredAny>(text) {
         return Err(CliError::MalformedJson {
             source: name.to_string(),
             message: e.to_string(),
         });
     }
-    serde_json::from_str::<Input>(text).map_err(|e| {
+    serde_json::from_str::<T>(text).map_err(|e| {
         let message = e.to_string();
         match e.classify() {
             serde_json::error::Category::Data => CliError::Schema {

@@ -4,8 +4,9 @@
 //!
 //! - [`args`]: the command line (clap derive);
 //! - [`input`]: reading a source (file or `-`) and parsing the JSON input,
-//!   dispatched on its `kind` tag (`polar` now; `cnet`, `dnet` parsed but
-//!   refused until the EG commands exist);
+//!   dispatched on its `kind` tag (`polar` for C²PS, `cnet` and `dnet` for
+//!   EG);
+//! - [`table`]: user rule tables for EG (`--table FILE`);
 //! - [`capacity`]: choosing a compile-time net capacity for the valence a job
 //!   needs (spec C2PS.md §1: level `m` has valence `n·2^m`);
 //! - [`commands`]: one module per subcommand, each producing its output in
@@ -28,6 +29,7 @@ pub mod obj;
 pub mod output;
 pub mod render;
 pub mod samples;
+pub mod table;
 
 pub use error::CliError;
 

@@ -7,7 +7,7 @@
 
 use crate::error::CliError;
 use crate::Scalar;
-use capdiv::{BicubicPatch, Point3, PolarNet, PoleGeometry, PoleJet, TensorPatch};
+use capdiv::{DNet, Point3, PolarNet, PoleGeometry, PoleJet, TensorPatch};
 use serde::Serialize;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -41,6 +41,61 @@ impl<R: Scalar> PolarOutput<R> {
     pub fn is_finite(&self) -> bool {
         finite(&self.pole) && self.links.iter().flatten().all(finite)
     }
+}
+
+/// An EG d-net, the `dnet` input schema (spec EG.md §2): `c0` and `n`
+/// sectors of 12 nodes in the order `00 10 20 30 01 11 21 31 02 12 22 32`.
+#[derive(Clone, Debug, Serialize)]
+pub struct DnetOutput<R> {
+    /// Always `"dnet"`.
+    pub kind: &'static str,
+    /// The limit point (fixed for all steps, §4).
+    pub c0: [R; 3],
+    /// The sectors, counter-clockwise.
+    pub sectors: Vec<[[R; 3]; 12]>,
+}
+
+impl<R: Scalar> DnetOutput<R> {
+    /// The d-net as printed.
+    pub fn of(net: &DNet<R>) -> Self {
+        DnetOutput {
+            kind: "dnet",
+            c0: net.c0().0,
+            sectors: net.sectors().iter().map(|s| s.map(|p| p.0)).collect(),
+        }
+    }
+
+    /// `true` when every coordinate is finite.
+    pub fn is_finite(&self) -> bool {
+        finite(&self.c0) && self.sectors.iter().flatten().all(finite)
+    }
+}
+
+/// `capdiv pole` of an EG input: the limit point `c0` (spec EG.md §4).
+#[derive(Clone, Debug, Serialize)]
+pub struct EgPoleOutput<R> {
+    /// `c0`: formula (3) of a c-net, the given or fitted (4) `c0` of a d-net.
+    pub limit: [R; 3],
+}
+
+/// `capdiv spectrum`: the spectrum of the EG subdivision matrix `A_n`
+/// (spec EG.md §6, §8); see [`crate::commands::spectrum`] for the definitions.
+#[derive(Clone, Debug, Serialize)]
+pub struct SpectrumOutput {
+    /// The valence n.
+    pub valence: usize,
+    /// `"builtin"` (n = 3, 5), `"regular"` (n = 4) or the table file's name.
+    pub table: String,
+    /// The 8 largest eigenvalue moduli `|ν|`, largest first.
+    pub eigenvalues: Vec<f64>,
+    /// The same 8 eigenvalues as `[re, im]`.
+    pub eigenvalues_re_im: Vec<[f64; 2]>,
+    /// The subdominant eigenvalue λ (the 2nd and 3rd modulus, a double pair).
+    pub lambda: f64,
+    /// Catmull-Clark's subdominant eigenvalue λ_CC(n).
+    pub lambda_cc: f64,
+    /// The three eigenvalues after the λ pair, divided by λ².
+    pub mu_over_lambda2: [f64; 3],
 }
 
 /// The pole's jet and geometry (spec C2PS.md §4).
@@ -88,9 +143,10 @@ impl<R: Scalar> PoleOutput<R> {
 /// One Bézier patch: `{"level", "degree", "points"}`.
 #[derive(Clone, Debug, Serialize)]
 pub struct PatchOutput<R> {
-    /// Subdivision level of the ring (0 also for the outer region).
+    /// Subdivision level of the ring (C²PS: 0 also for the outer region; EG:
+    /// the step 1..M that emitted it).
     pub level: u32,
-    /// Degree in each direction (3 for C²PS).
+    /// Degree in each direction (3 for C²PS, 4 for EG).
     pub degree: usize,
     /// `(degree+1)²` control points, row `i` (along `u`, outward) after row,
     /// `j` (along `v`, counter-clockwise) within a row.
@@ -108,13 +164,15 @@ impl<R: Scalar> PatchOutput<R> {
     }
 }
 
-/// A patch with the level it belongs to (what `patches` collects).
+/// A patch with the level it belongs to (what `patches` collects): bicubic
+/// (`K = 4`) for C²PS, bi-quartic (`K = 5`) for EG.
 #[derive(Clone, Copy, Debug)]
-pub struct LeveledPatch<R> {
-    /// Subdivision level (0 for the outer region).
+pub struct LeveledPatch<R, const K: usize> {
+    /// Subdivision level (C²PS: the ring's level, 0 also for the outer
+    /// region; EG: the step that emitted the ring, 1..M).
     pub level: u32,
-    /// The bicubic Bézier patch.
-    pub patch: BicubicPatch<R>,
+    /// The Bézier patch, `K×K` control points.
+    pub patch: TensorPatch<R, K>,
 }
 
 fn finite<R: Scalar>(p: &[R; 3]) -> bool {

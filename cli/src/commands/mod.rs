@@ -2,15 +2,17 @@
 //! its input, runs the kernel in the precision asked for, and returns its whole
 //! output as an [`Outcome`]; nothing is written before the command succeeded.
 //!
-//! Adding EG: a `cnet`/`dnet` arm in the commands that take a configuration
-//! (today they call [`crate::input::Input::into_polar`], which refuses other
-//! kinds), `Scheme::Eg` in [`crate::args`], and a `spectrum` module here.
+//! `refine`, `pole` and `patches` dispatch on the input's `kind`: the polar
+//! steps are in [`polar`], the EG ones in [`eg`]; `spectrum` takes no input
+//! net (a valence and optionally a rule table).
 
 pub mod demo;
+pub mod eg;
 pub mod patches;
 pub mod polar;
 pub mod pole;
 pub mod refine;
+pub mod spectrum;
 
 use crate::args::Command;
 use crate::error::CliError;
@@ -38,6 +40,7 @@ pub fn run(command: Command) -> Result<Outcome, CliError> {
         Command::Refine(a) => refine::run(&a),
         Command::Pole(a) => pole::run(&a),
         Command::Patches(a) => patches::run(&a),
+        Command::Spectrum(a) => spectrum::run(&a),
         Command::Demo(a) => demo::run(&a),
     }
 }

@@ -36,10 +36,11 @@ impl<R: Scalar> Config<R> {
     }
 }
 
-/// Reads and parses `file` (`-` = stdin) and takes its polar configuration.
-/// Returns the input's display name with it.
-pub fn read_polar(file: &str) -> Result<(String, PolarInput), CliError> {
+/// Reads and parses `file` (`-` = stdin) and takes its polar configuration
+/// (`who` names the command in the error for other kinds). Returns the
+/// input's display name with it.
+pub fn read_polar(file: &str, who: &str) -> Result<(String, PolarInput), CliError> {
     let source = Source::read(file)?;
-    let input = source.parse()?.into_polar(&source.name)?;
+    let input = source.parse()?.into_polar(&source.name, who)?;
     Ok((source.name, input))
 }

@@ -1,28 +1,61 @@
-//! `capdiv pole`: the eigencoefficients `p0..p5` of the input configuration,
-//! the limit point `p0`, the unit normal and the curvatures at the pole (spec
-//! C2PS.md §4; kernel `PoleJet::of` and `PoleJet::geometry`).
+//! `capdiv pole`: the limit point at the center of the input.
+//!
+//! - `polar`: the eigencoefficients `p0..p5`, the limit point `p0`, the unit
+//!   normal and the curvatures at the pole (spec C2PS.md §4; kernel
+//!   `PoleJet::of` and `PoleJet::geometry`);
+//! - `cnet`: `{"limit"}`, `c0` by formula (3) (spec EG.md §4, kernel
+//!   `CNet::limit`);
+//! - `dnet`: `{"limit"}`, its `c0` when given, else formula (4) (kernel
+//!   `DNet::fitted_limit`). `c0` is the same at every level (EG keeps it).
 
-use super::polar::{read_polar, Config};
+use super::eg::{cnet, dnet_of};
+use super::polar::Config;
 use super::Outcome;
 use crate::args::{PoleArgs, Precision};
 use crate::capacity::{dispatch, NetJob};
 use crate::error::CliError;
-use crate::input::PolarInput;
-use crate::output::{to_json, PoleOutput, Sink};
+use crate::input::{Input, PolarInput, Source};
+use crate::output::{to_json, EgPoleOutput, PoleOutput, Sink};
 use crate::Scalar;
 use capdiv::{PolarNet, PoleJet};
 
 /// Runs the command.
 pub fn run(args: &PoleArgs) -> Result<Outcome, CliError> {
-    let (name, input) = read_polar(&args.io.file)?;
-    let bytes = match args.precision {
-        Precision::F64 => to_json(&pole::<f64>(&name, &input)?, args.pretty),
-        Precision::F32 => to_json(&pole::<f32>(&name, &input)?, args.pretty),
+    let source = Source::read(&args.io.file)?;
+    let name = &source.name;
+    let input = source.parse()?;
+    let bytes = match (&input, args.precision) {
+        (Input::Polar(p), Precision::F64) => to_json(&pole::<f64>(name, p)?, args.pretty),
+        (Input::Polar(p), Precision::F32) => to_json(&pole::<f32>(name, p)?, args.pretty),
+        (_, Precision::F64) => to_json(&eg_limit::<f64>(name, &input)?, args.pretty),
+        (_, Precision::F32) => to_json(&eg_limit::<f32>(name, &input)?, args.pretty),
     };
     Ok(Outcome {
         bytes,
         sink: Sink::from_option(args.io.output.clone()),
     })
+}
+
+/// The limit point `c0` of a `cnet` (formula (3)) or `dnet` (given `c0`, else
+/// formula (4)) input (spec EG.md §4).
+pub fn eg_limit<R: Scalar>(name: &str, input: &Input) -> Result<EgPoleOutput<R>, CliError> {
+    let limit = match input {
+        Input::Cnet(c) => cnet::<R>(name, c)?.limit(),
+        Input::Dnet(d) => dnet_of::<R>(name, d)?.c0(),
+        Input::Polar(_) => {
+            return Err(CliError::WrongKind {
+                source: name.to_string(),
+                kind: "polar",
+                need: "the EG limit point needs a 'cnet' or 'dnet' input".into(),
+            })
+        }
+    };
+    if !limit.is_finite() {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    Ok(EgPoleOutput { limit: limit.0 })
 }
 
 /// Jet and geometry at the pole of `input`. A degenerate tangent plane

@@ -1,44 +1,111 @@
-//! `capdiv refine`: M steps of C²PS (spec C2PS.md §2) or RTS (§3); prints the
-//! level-M configuration in the input schema.
+//! `capdiv refine`: M steps of C²PS (spec C2PS.md §2), RTS (§3) or EG
+//! (spec EG.md §5, §6); prints the level-M configuration in the input schema
+//! (EG: always as a `dnet`, with its `c0`).
+//!
+//! The scheme defaults to the input's kind: `polar` → C²PS, `cnet`/`dnet` →
+//! EG; a scheme that does not fit the kind is an error. EG keeps the valence;
+//! see [`super::eg`] for the rules per valence (n = 4: regular rules).
 //!
 //! The kernel keeps links 1..5 (what one surface ring needs, §5), so the
 //! output holds at most 5 links; links beyond the 5th only shape the level-0
 //! outer region. With 2 input links the output has 3 after one step and 5
 //! after two (old links up to K give new links up to 2K−1, §2).
 
-use super::polar::{read_polar, Config};
+use super::eg::{read_table, subdivision};
+use super::polar::Config;
 use super::Outcome;
 use crate::args::{FirstStepArg, Precision, RefineArgs, Scheme};
 use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::error::CliError;
-use crate::input::PolarInput;
-use crate::output::{to_json, PolarOutput, Sink};
+use crate::input::{EgInput, Input, PolarInput, Source};
+use crate::output::{to_json, DnetOutput, PolarOutput, Sink};
+use crate::table::Table;
 use crate::Scalar;
 use capdiv::{FirstStep, PolarNet};
 
-/// Runs the command.
-pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
-    if args.scheme == Scheme::Rts && args.first_step.is_some() {
+/// The option combinations a scheme refuses (checked before and after the
+/// input decides the default scheme).
+fn check_options(args: &RefineArgs, scheme: Scheme) -> Result<(), CliError> {
+    if scheme != Scheme::C2ps && args.first_step.is_some() {
         return Err(CliError::Usage(
             "--first-step applies to --scheme c2ps only".into(),
         ));
     }
-    let first = args.first_step.unwrap_or(FirstStepArg::Uniform).into();
-    let (name, input) = read_polar(&args.io.file)?;
-    let bytes = match args.precision {
-        Precision::F64 => to_json(
-            &refine::<f64>(&name, &input, args.scheme, args.steps, first)?,
-            args.pretty,
-        ),
-        Precision::F32 => to_json(
-            &refine::<f32>(&name, &input, args.scheme, args.steps, first)?,
-            args.pretty,
-        ),
+    if scheme != Scheme::Eg && args.table.is_some() {
+        return Err(CliError::Usage(
+            "--table applies to --scheme eg only".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Runs the command.
+pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
+    if let Some(scheme) = args.scheme {
+        check_options(args, scheme)?;
+    }
+    let source = Source::read(&args.io.file)?;
+    let name = source.name.clone();
+    let input = source.parse()?;
+    let scheme = args.scheme.unwrap_or(match input {
+        Input::Polar(_) => Scheme::C2ps,
+        Input::Cnet(_) | Input::Dnet(_) => Scheme::Eg,
+    });
+    check_options(args, scheme)?;
+    let who = format!("--scheme {}", scheme.name());
+    let bytes = if scheme == Scheme::Eg {
+        let input = input.into_eg(&name, &who)?;
+        let table = read_table(args.table.as_deref())?;
+        let table = table.as_ref();
+        match args.precision {
+            Precision::F64 => to_json(
+                &refine_eg::<f64>(&name, &input, args.steps, table)?,
+                args.pretty,
+            ),
+            Precision::F32 => to_json(
+                &refine_eg::<f32>(&name, &input, args.steps, table)?,
+                args.pretty,
+            ),
+        }
+    } else {
+        let input = input.into_polar(&name, &who)?;
+        let first = args.first_step.unwrap_or(FirstStepArg::Uniform).into();
+        match args.precision {
+            Precision::F64 => to_json(
+                &refine::<f64>(&name, &input, scheme, args.steps, first)?,
+                args.pretty,
+            ),
+            Precision::F32 => to_json(
+                &refine::<f32>(&name, &input, scheme, args.steps, first)?,
+                args.pretty,
+            ),
+        }
     };
     Ok(Outcome {
         bytes,
         sink: Sink::from_option(args.io.output.clone()),
     })
+}
+
+/// The level-`steps` d-net of an EG input (spec EG.md §5, §6; `c0` fixed),
+/// with the user's table when given.
+pub fn refine_eg<R: Scalar>(
+    name: &str,
+    input: &EgInput,
+    steps: u32,
+    table: Option<&Table>,
+) -> Result<DnetOutput<R>, CliError> {
+    let mut eg = subdivision::<R>(name, input, table)?;
+    for _ in 0..steps {
+        eg.step().map_err(|e| CliError::kernel(name, e))?;
+    }
+    let out = DnetOutput::of(eg.net());
+    if !out.is_finite() {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    Ok(out)
 }
 
 /// The level-`steps` configuration of `input` (`name` for messages).
@@ -49,11 +116,18 @@ pub fn refine<R: Scalar>(
     steps: u32,
     first: FirstStep,
 ) -> Result<PolarOutput<R>, CliError> {
+    if scheme == Scheme::Eg {
+        return Err(CliError::WrongKind {
+            source: name.to_string(),
+            kind: "polar",
+            need: "--scheme eg needs a 'cnet' or 'dnet' input".into(),
+        });
+    }
     let config = Config::<R>::of(input);
     let n = config.valence();
     let needed = match scheme {
         Scheme::C2ps => valence_after(n, steps),
-        Scheme::Rts => Some(n),
+        Scheme::Rts | Scheme::Eg => Some(n),
     };
     let out = dispatch(
         needed,
@@ -91,7 +165,8 @@ impl<R: Scalar> NetJob<R> for Job<'_, R> {
         for _ in 0..self.steps {
             match self.scheme {
                 Scheme::C2ps => net.step(self.first).map_err(kernel)?,
-                Scheme::Rts => net.rts_step(),
+                // Eg is refused by `refine` before the job starts.
+                Scheme::Rts | Scheme::Eg => net.rts_step(),
             }
         }
         Ok(PolarOutput::of(&net))
