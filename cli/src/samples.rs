@@ -15,7 +15,13 @@
 //! a sampled saddle `x² − y²` limits to `1.5 (x² − y²)`: `K` is 2.25× the
 //! sampled surface's. Control points on a surface are not points of the limit.
 
-use crate::input::PolarInput;
+//!
+//! EG samples ([`eg_samples`]): c-nets (spec EG.md §1) of valence 3 and 5,
+//! node `(x, y)` of sector `s` placed at `h (x u_s + y u_{s+1})` in the plane,
+//! `u_s = (cos 2πs/n, sin 2πs/n)` (sectors counter-clockwise seen from +z),
+//! lifted to `z = f(x, y)`; the center is `(0, 0, f(0, 0))`.
+
+use crate::input::{CnetInput, PolarInput};
 use std::f64::consts::TAU;
 
 /// Curvatures of the sampled surface at the origin.
@@ -103,6 +109,65 @@ pub fn demo_samples() -> Vec<Sample> {
                 mean: 1.0 / radius,
             },
             note: "not quadratic: p3 = z(h) gives curvature 2 z(h)/h^2 = 1/R + O(h^2)",
+        },
+    ]
+}
+
+/// A named EG sample for the demo: a c-net around an extraordinary node.
+#[derive(Clone, Debug)]
+pub struct EgSample {
+    /// File stem and label.
+    pub name: &'static str,
+    /// The surface in words.
+    pub surface: &'static str,
+    /// The level-0 c-net.
+    pub input: CnetInput,
+    /// Steps the demo takes (rings of levels 1..=depth).
+    pub depth: u32,
+    /// What to expect.
+    pub note: &'static str,
+}
+
+/// The c-net of valence `n` sampling `f` (module docs), node spacing `h`.
+pub fn sample_cnet(n: usize, h: f64, f: impl Fn(f64, f64) -> f64) -> CnetInput {
+    let spoke = |s: usize| {
+        let t = TAU * s as f64 / n as f64;
+        (t.cos(), t.sin())
+    };
+    let sectors = (0..n)
+        .map(|s| {
+            let (a, b) = (spoke(s), spoke(s + 1));
+            // §1 order: (1,0) (2,0) (1,1) (2,1) (1,2) (2,2).
+            [(1, 0), (2, 0), (1, 1), (2, 1), (1, 2), (2, 2)].map(|(x, y)| {
+                let (x, y) = (f64::from(x), f64::from(y));
+                let (px, py) = (h * (x * a.0 + y * b.0), h * (x * a.1 + y * b.1));
+                [px, py, f(px, py)]
+            })
+        })
+        .collect();
+    CnetInput {
+        center: [0.0, 0.0, f(0.0, 0.0)],
+        sectors,
+    }
+}
+
+/// The demo's EG samples: a monkey saddle around a valence-3 node and a
+/// paraboloid with a ripple around a valence-5 node.
+pub fn eg_samples() -> Vec<EgSample> {
+    vec![
+        EgSample {
+            name: "eg-n3",
+            surface: "monkey saddle z = (x^3 - 3xy^2)/4 over a valence-3 c-net",
+            input: sample_cnet(3, 0.5, |x, y| 0.25 * (x * x * x - 3.0 * x * y * y)),
+            depth: 8,
+            note: "cos 3t: spoke nodes at +1/32, diagonal nodes at -1/32; (3) weighs them 1/6 and 5/96: c0 z = 11/1024",
+        },
+        EgSample {
+            name: "eg-n5",
+            surface: "z = (x^2 + y^2)/2 + x y^2/4 over a valence-5 c-net",
+            input: sample_cnet(5, 0.5, |x, y| 0.5 * (x * x + y * y) + 0.25 * x * y * y),
+            depth: 8,
+            note: "c0 by (3) averages the nodes around the center: above the sampled f(0,0) = 0",
         },
     ]
 }

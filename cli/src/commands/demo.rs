@@ -1,21 +1,23 @@
 //! `capdiv demo`: refines the built-in samples ([`crate::samples`]) with C²PS
-//! (f64, first step uniform), writes `<name>.obj` (patches through the
-//! sample's depth, tessellated), `<name>.png` (a shaded preview of that mesh,
-//! rings coloured by level) and `<name>.json` (the level-0 input, usable with
-//! the other commands) to the output directory, and prints a summary:
-//! limit point, curvature at the pole against the sampled surface's,
-//! patch counts, time taken.
+//! (f64, first step uniform) and with EG (c-nets of valence 3 and 5, spec
+//! EG.md), writes `<name>.obj` (patches through the sample's depth,
+//! tessellated), `<name>.png` (a shaded preview of that mesh, rings coloured
+//! by level) and `<name>.json` (the level-0 input, usable with the other
+//! commands) to the output directory, and prints a summary: limit point
+//! (C²PS: curvature at the pole against the sampled surface's; EG: `c0` by
+//! (3) and how close the last ring has come to it), patch counts, time taken.
 //!
 //! Each file is written atomically; the summary is printed once all samples
 //! have succeeded.
 
-use super::patches::{collect, png_bytes};
+use super::patches::{collect, collect_eg, png_bytes};
 use super::pole::pole;
 use super::Outcome;
 use crate::args::DemoArgs;
 use crate::error::CliError;
+use crate::input::EgInput;
 use crate::output::{to_json, write_atomic, Sink};
-use crate::samples::{demo_samples, Sample};
+use crate::samples::{demo_samples, eg_samples, EgSample, Sample};
 use capdiv::FirstStep;
 use std::fmt::Write;
 use std::path::Path;
@@ -42,6 +44,13 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
     }
     let _ = writeln!(
         text,
+        "EG: Evolving Guide subdivision (spec EG.md) of c-nets, f64, built-in rules (§7)\n"
+    );
+    for sample in eg_samples() {
+        one_eg(sample, &args.out, &mut text)?;
+    }
+    let _ = writeln!(
+        text,
         "total time {:.1} ms",
         start.elapsed().as_secs_f64() * 1e3
     );
@@ -58,21 +67,20 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let n = input.links.first().map_or(0, Vec::len);
     let jet = pole::<f64>(name, input)?;
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
-    let obj_path = dir.join(format!("{name}.obj"));
     let title = format!("capdiv demo: {name}, {}", sample.surface);
     let mesh = set.to_mesh(DEMO_GRID);
     let obj = set.to_obj(&mesh, DEMO_GRID, &title);
     let png = png_bytes(&mesh)?;
     let compute = start.elapsed();
-    write_atomic(&obj_path, obj.as_bytes())?;
-    let png_path = dir.join(format!("{name}.png"));
-    write_atomic(&png_path, &png)?;
-    let json_path = dir.join(format!("{name}.json"));
-    let mut json_input = serde_json::to_value(input).unwrap_or_default();
-    if let Some(obj) = json_input.as_object_mut() {
-        obj.insert("kind".into(), "polar".into());
-    }
-    write_atomic(&json_path, &to_json(&json_input, false))?;
+    let files = write_files(
+        dir,
+        name,
+        &obj,
+        &png,
+        input,
+        "polar",
+        (mesh.positions.len(), mesh.quads.len()),
+    )?;
     let total = start.elapsed();
 
     let a = sample.analytic;
@@ -107,28 +115,125 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     );
     s += &w("note", sample.note.to_string());
     s += &w("patches", set.describe());
-    s += &w(
-        "files",
-        format!(
-            "{} ({} vertices, {} quads), {}, {}",
-            obj_path.display(),
-            mesh.positions.len(),
-            mesh.quads.len(),
-            png_path.display(),
-            json_path.display()
-        ),
-    );
-    s += &w(
-        "time",
-        format!(
-            "{:.1} ms refine + tessellate + render, {:.1} ms with writing",
-            compute.as_secs_f64() * 1e3,
-            total.as_secs_f64() * 1e3
-        ),
-    );
+    s += &w("files", files);
+    s += &w("time", times(compute, total));
     text.push_str(&s);
     text.push('\n');
     Ok(())
+}
+
+/// One EG sample: c-net → d-net (§3, `c0` by (3)), `depth` steps, the rings
+/// of levels 1..=depth as OBJ and PNG, the c-net as JSON.
+fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliError> {
+    let start = Instant::now();
+    let name = sample.name;
+    let input = EgInput::Cnet(sample.input.clone());
+    let n = sample.input.sectors.len();
+    let set = collect_eg::<f64>(name, &input, sample.depth, None)?;
+    let c0 = super::eg::dnet::<f64>(name, &input)?.c0().0;
+    let title = format!("capdiv demo: {name}, {}", sample.surface);
+    let mesh = set.to_mesh(DEMO_GRID);
+    let obj = set.to_obj(&mesh, DEMO_GRID, &title);
+    let png = png_bytes(&mesh)?;
+    let compute = start.elapsed();
+    let files = write_files(
+        dir,
+        name,
+        &obj,
+        &png,
+        &sample.input,
+        "cnet",
+        (mesh.positions.len(), mesh.quads.len()),
+    )?;
+    let total = start.elapsed();
+
+    // Ring M's innermost surface points: the corner (u, v) = (0, 0) of each
+    // sector's [½,1]² patch, at (1, 1)·2^−M in level-0 c-units. A Bézier
+    // corner lies on the surface.
+    let approach = set
+        .patches
+        .iter()
+        .skip(set.patches.len().saturating_sub(3 * n))
+        .skip(2)
+        .step_by(3)
+        .map(|p| {
+            let b = p.patch.points[0][0].0;
+            (0..3).map(|k| (b[k] - c0[k]).powi(2)).sum::<f64>().sqrt()
+        })
+        .fold(0.0f64, f64::max);
+
+    let w = |label: &str, value: String| format!("  {label:<20}{value}\n");
+    let mut s = format!("{name}: {}\n", sample.surface);
+    s += &w(
+        "input",
+        format!(
+            "c-net of valence n = {n} (6n + 1 = {} nodes); {} EG steps",
+            6 * n + 1,
+            sample.depth
+        ),
+    );
+    s += &w(
+        "limit point",
+        format!(
+            "{} (c0 by (3); center node e = {})",
+            fmt3(&c0),
+            fmt3(&sample.input.center)
+        ),
+    );
+    s += &w(
+        "ring approach",
+        format!(
+            "ring {} reaches {:.3e} from c0 ((1,1)·2^-{} c-units from the center)",
+            sample.depth, approach, sample.depth
+        ),
+    );
+    s += &w("note", sample.note.to_string());
+    s += &w(
+        "patches",
+        format!("{} (3n = {} per ring)", set.describe(), 3 * n),
+    );
+    s += &w("files", files);
+    s += &w("time", times(compute, total));
+    text.push_str(&s);
+    text.push('\n');
+    Ok(())
+}
+
+/// Writes `<name>.obj`, `<name>.png` and `<name>.json` (the input with its
+/// `kind`); returns the summary line.
+fn write_files<T: serde::Serialize>(
+    dir: &Path,
+    name: &str,
+    obj: &str,
+    png: &[u8],
+    input: &T,
+    kind: &str,
+    (vertices, quads): (usize, usize),
+) -> Result<String, CliError> {
+    let obj_path = dir.join(format!("{name}.obj"));
+    write_atomic(&obj_path, obj.as_bytes())?;
+    let png_path = dir.join(format!("{name}.png"));
+    write_atomic(&png_path, png)?;
+    let json_path = dir.join(format!("{name}.json"));
+    let mut json_input = serde_json::to_value(input).unwrap_or_default();
+    if let Some(obj) = json_input.as_object_mut() {
+        obj.insert("kind".into(), kind.into());
+    }
+    write_atomic(&json_path, &to_json(&json_input, false))?;
+    Ok(format!(
+        "{} ({vertices} vertices, {quads} quads), {}, {}",
+        obj_path.display(),
+        png_path.display(),
+        json_path.display()
+    ))
+}
+
+fn times(compute: std::time::Duration, total: std::time::Duration) -> String {
+    format!(
+        "{:.1} ms refine + tessellate + render, {:.1} ms with writing",
+        compute.as_secs_f64() * 1e3,
+        total.as_secs_f64() * 1e3
+    )
 }
 
 fn fmt3(p: &[f64; 3]) -> String {
