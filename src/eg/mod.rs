@@ -58,3 +58,24 @@ pub use subdivision::{EgRingPatches, EgSubdivision, PatchDomain};
 
 /// The largest valence EG supports (the paper's tables stop at 10).
 pub const MAX_VALENCE: usize = 10;
+
+// With the `defmt` feature every public EG type is `defmt::Format` (issue 4),
+// checked here at compile time for both scalar types.
+#[cfg(feature = "defmt")]
+const _: () = {
+    const fn format<T: defmt::Format + ?Sized>() {}
+    const fn all<R: defmt::Format + 'static>() {
+        format::<CNet<R>>();
+        format::<DNet<R>>();
+        format::<CSector<R>>();
+        format::<DSector<R>>();
+        format::<EgSubdivision<'static, R>>();
+        format::<EgRingPatches<'static, 'static, R>>();
+    }
+    all::<f32>();
+    all::<f64>();
+    format::<RuleTable<'static>>();
+    format::<InnerNode>();
+    format::<PatchDomain>();
+    format::<tables::Row>();
+};

@@ -82,6 +82,7 @@ pub(crate) fn sector_at<T>(sectors: &[T], s: usize, ds: i8) -> Result<&T, Error>
 /// A Catmull-Clark c-net (§1): center `e` of valence `n ∈ 3..=10` and `n`
 /// counter-clockwise sectors of 6 nodes.
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CNet<R> {
     center: Point3<R>,
     sectors: Vec<CSector<R>, MAX_VALENCE>,
@@ -216,6 +217,7 @@ impl<R: Real> CNet<R> {
 /// A d-net (§2): `n ∈ 3..=10` sectors of 12 bi-4 C² spline nodes, and the
 /// limit point `c0`, fixed for all steps (§4).
 #[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct DNet<R> {
     pub(crate) c0: Point3<R>,
     pub(crate) sectors: Vec<DSector<R>, MAX_VALENCE>,

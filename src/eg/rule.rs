@@ -103,6 +103,7 @@ fn image(sym: Symmetry, n: usize, r: usize, col: usize) -> (usize, usize) {
 /// Built-in tables (n = 3, 5) come from [`RuleTable::builtin`]; any other
 /// table goes through [`RuleTable::new`], which checks it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RuleTable<'a> {
     valence: usize,
     a11: &'a [Row],

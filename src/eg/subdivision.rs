@@ -17,6 +17,7 @@ use crate::real::Real;
 /// the new net in one more `DNet` on the stack, so a failing step leaves the
 /// state untouched.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EgSubdivision<'t, R> {
     table: Option<RuleTable<'t>>,
     prev: DNet<R>,
@@ -195,6 +196,7 @@ pub struct PatchDomain {
 
 /// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EgRingPatches<'a, 't, R> {
     sub: &'a EgSubdivision<'t, R>,
     next: usize,
