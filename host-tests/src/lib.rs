@@ -17,6 +17,7 @@
 
 pub mod bezier;
 pub mod c2ps;
+pub mod eg;
 pub mod eigen;
 pub mod jet;
 pub mod polar;
