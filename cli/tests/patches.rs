@@ -118,43 +118,6 @@ fn outer_region_meets_ring_zero() {
     }
 }
 
-struct Obj {
-    v: Vec<[f64; 3]>,
-    vn: Vec<[f64; 3]>,
-    f: Vec<Vec<(usize, usize)>>,
-}
-
-fn parse_obj(text: &str) -> Obj {
-    let mut obj = Obj {
-        v: vec![],
-        vn: vec![],
-        f: vec![],
-    };
-    for line in text.lines() {
-        let mut it = line.split_whitespace();
-        let nums = |it: std::str::SplitWhitespace| -> [f64; 3] {
-            let v: Vec<f64> = it.map(|x| x.parse().expect("number")).collect();
-            assert_eq!(v.len(), 3, "{line}");
-            [v[0], v[1], v[2]]
-        };
-        match it.next() {
-            Some("v") => obj.v.push(nums(it)),
-            Some("vn") => obj.vn.push(nums(it)),
-            Some("f") => obj.f.push(
-                it.map(|c| {
-                    let (a, b) = c.split_once("//").expect("v//vn");
-                    (a.parse().unwrap(), b.parse().unwrap())
-                })
-                .collect(),
-            ),
-            Some(t) if t.starts_with('#') => {}
-            None => {}
-            Some(other) => panic!("unexpected OBJ line {other}: {line}"),
-        }
-    }
-    obj
-}
-
 #[test]
 fn obj_is_well_formed_and_interpolates_patch_corners() {
     let dir = tempdir();

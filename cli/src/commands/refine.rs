@@ -11,7 +11,7 @@
 //! outer region. With 2 input links the output has 3 after one step and 5
 //! after two (old links up to K give new links up to 2K−1, §2).
 
-use super::eg::{read_table, subdivision};
+use super::eg::{dnet, read_table, subdivision};
 use super::polar::Config;
 use super::Outcome;
 use crate::args::{FirstStepArg, Precision, RefineArgs, Scheme};
@@ -88,18 +88,25 @@ pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
 }
 
 /// The level-`steps` d-net of an EG input (spec EG.md §5, §6; `c0` fixed),
-/// with the user's table when given.
+/// with the user's table when given. `steps = 0` without a table needs no
+/// rule: it prints the d-net (a c-net's degree raising, §3) for any valence
+/// 3..=10.
 pub fn refine_eg<R: Scalar>(
     name: &str,
     input: &EgInput,
     steps: u32,
     table: Option<&Table>,
 ) -> Result<DnetOutput<R>, CliError> {
-    let mut eg = subdivision::<R>(name, input, table)?;
-    for _ in 0..steps {
-        eg.step().map_err(|e| CliError::kernel(name, e))?;
-    }
-    let out = DnetOutput::of(eg.net());
+    let out = if steps == 0 && table.is_none() {
+        // No step, no rule needed: the d-net itself (any valence 3..=10).
+        DnetOutput::of(&dnet::<R>(name, input)?)
+    } else {
+        let mut eg = subdivision::<R>(name, input, table)?;
+        for _ in 0..steps {
+            eg.step().map_err(|e| CliError::kernel(name, e))?;
+        }
+        DnetOutput::of(eg.net())
+    };
     if !out.is_finite() {
         return Err(CliError::NonFiniteResult {
             source: name.to_string(),

@@ -171,3 +171,101 @@ pub fn decode_png(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
     buf.truncate(info.buffer_size());
     (info.width as usize, info.height as usize, buf)
 }
+
+/// A c-net of valence `n` (spec EG.md §1): node `(x, y)` of sector `s` near
+/// `x u_s + y u_{s+1}` in the plane (`u_s` the unit vector at angle 2πs/n),
+/// lifted by a bump, plus noise of size 0.1 so that nothing is symmetric.
+/// Returns `(center, sectors)` in the §1 order.
+pub fn cnet(n: usize, seed: u64) -> ([f64; 3], Vec<[[f64; 3]; 6]>) {
+    let mut rng = Lcg::new(seed);
+    let center = [0.1 * rng.next(), 0.1 * rng.next(), 0.2 + 0.1 * rng.next()];
+    let u = |s: usize| {
+        let t = std::f64::consts::TAU * s as f64 / n as f64;
+        [t.cos(), t.sin()]
+    };
+    let sectors = (0..n)
+        .map(|s| {
+            let (a, b) = (u(s), u(s + 1));
+            [(1., 0.), (2., 0.), (1., 1.), (2., 1.), (1., 2.), (2., 2.)].map(|(x, y)| {
+                let px = x * a[0] + y * b[0];
+                let py = x * a[1] + y * b[1];
+                [
+                    px + 0.1 * rng.next(),
+                    py + 0.1 * rng.next(),
+                    0.3 * (px * px + py * py) * (1.0 + 0.3 * px) + 0.1 * rng.next(),
+                ]
+            })
+        })
+        .collect();
+    (center, sectors)
+}
+
+/// The input JSON of a c-net.
+pub fn cnet_json(center: [f64; 3], sectors: &[[[f64; 3]; 6]]) -> Value {
+    json!({"kind": "cnet", "center": center, "sectors": sectors})
+}
+
+/// The input JSON of a d-net (`c0` omitted when `None`).
+pub fn dnet_json(sectors: &[[[f64; 3]; 12]], c0: Option<[f64; 3]>) -> Value {
+    match c0 {
+        Some(c0) => json!({"kind": "dnet", "c0": c0, "sectors": sectors}),
+        None => json!({"kind": "dnet", "sectors": sectors}),
+    }
+}
+
+/// `(c0, sectors)` of a d-net printed by the CLI (exactly `kind`, `c0`,
+/// `sectors`; 12 points a sector).
+pub fn parse_dnet(v: &Value) -> ([f64; 3], Vec<[[f64; 3]; 12]>) {
+    assert_eq!(v["kind"], "dnet");
+    let obj = v.as_object().unwrap();
+    assert_eq!(obj.len(), 3, "exactly kind, c0, sectors: {obj:?}");
+    let sectors = v["sectors"]
+        .as_array()
+        .expect("sectors is an array")
+        .iter()
+        .map(|s| {
+            let pts: Vec<[f64; 3]> = s.as_array().expect("sector").iter().map(p3).collect();
+            pts.try_into().expect("12 points a sector")
+        })
+        .collect();
+    (p3(&v["c0"]), sectors)
+}
+
+/// A Wavefront OBJ file as parsed: `v`, `vn`, faces of `(v, vn)` indices.
+pub struct Obj {
+    pub v: Vec<[f64; 3]>,
+    pub vn: Vec<[f64; 3]>,
+    pub f: Vec<Vec<(usize, usize)>>,
+}
+
+/// Parses the OBJ subset the CLI writes (panics on anything else).
+pub fn parse_obj(text: &str) -> Obj {
+    let mut obj = Obj {
+        v: vec![],
+        vn: vec![],
+        f: vec![],
+    };
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        let nums = |it: std::str::SplitWhitespace| -> [f64; 3] {
+            let v: Vec<f64> = it.map(|x| x.parse().expect("number")).collect();
+            assert_eq!(v.len(), 3, "{line}");
+            [v[0], v[1], v[2]]
+        };
+        match it.next() {
+            Some("v") => obj.v.push(nums(it)),
+            Some("vn") => obj.vn.push(nums(it)),
+            Some("f") => obj.f.push(
+                it.map(|c| {
+                    let (a, b) = c.split_once("//").expect("v//vn");
+                    (a.parse().unwrap(), b.parse().unwrap())
+                })
+                .collect(),
+            ),
+            Some(t) if t.starts_with('#') => {}
+            None => {}
+            Some(other) => panic!("unexpected OBJ line {other}: {line}"),
+        }
+    }
+    obj
+}
