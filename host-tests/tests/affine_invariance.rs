@@ -5,7 +5,7 @@
 //!
 //! Tolerance: 1e-11 · S with S = max(|image coordinates|, ‖M‖∞ · size):
 //! a few levels of round-off at ≤ 1e-15 S each, with margin for the sums of
-//! up to 16384 terms (measured ≤ 5e-15 S).
+//! up to 16384 terms.
 
 mod common;
 

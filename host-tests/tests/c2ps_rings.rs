@@ -81,7 +81,7 @@ proptest! {
     /// m+1, so `∂_u = 2 ∂_u'` and `∂_uu = 4 ∂_u'u'`. Ring m's column c covers
     /// ring m+1's columns 2c, 2c+1. Tolerance 1e-12 · size: the join is exact
     /// (links 3..5 of level m+1 are uniform refinements of links 1..3 of level
-    /// m), so only round-off of a few 16-term sums remains, ≤ 1e-14 · size.
+    /// m), so only round-off of a few 16-term sums (and of 8 steps) remains.
     #[test]
     fn consecutive_rings_join_c2(
         cfg in config(3..=64, 2..=5),

@@ -105,8 +105,8 @@ proptest! {
 
     /// The kernel's in-place O(n) `rts_step`, applied 1..3 times, equals the
     /// dense matrix product, and so does the literal O(n²) `rts::step`.
-    /// Tolerance 1e-12 · size: one matrix-vector product of ≤ 321 terms per
-    /// entry per step, round-off ≤ 1e-15 · size measured.
+    /// Tolerance 1e-12 · size: ≤ 3 steps of sums of ≤ 321 terms of size ≤ 1
+    /// per entry, round-off of order 1e-15 · size.
     #[test]
     fn kernel_rts_step_equals_dense_matrix_product(
         cfg in config(3..=64, 2..=5),
