@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 
-const SAMPLES: [&str; 3] = ["paraboloid", "saddle", "sphere-n48"];
+const SAMPLES: [&str; 5] = ["paraboloid", "saddle", "sphere-n48", "eg-n3", "eg-n5"];
 
 #[test]
 fn demo_writes_its_files_and_summary() {
@@ -27,7 +27,7 @@ fn demo_writes_its_files_and_summary() {
         assert!(text.contains(label), "summary lacks {label}");
     }
 
-    // Exactly the 9 files, no temporary file left behind.
+    // Exactly the 15 files, no temporary file left behind.
     let mut files: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
@@ -68,6 +68,37 @@ fn demo_writes_its_files_and_summary() {
         capdiv(&["pole", s(&json)], None).ok_json();
     }
 
+    // EG samples: c-nets of valence 3 and 5, 8 steps, 3n patches a ring;
+    // the printed limit is c0 of the written c-net.
+    for (name, n) in [("eg-n3", 3usize), ("eg-n5", 5)] {
+        let json = out.join(format!("{name}.json"));
+        let input: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        assert_eq!(input["kind"], "cnet");
+        assert_eq!(input["sectors"].as_array().unwrap().len(), n);
+        let patches = format!("{} bi-4 Bézier patches in rings of levels 1..=8", 24 * n);
+        assert!(text.contains(&patches), "summary lacks {patches:?}");
+        let limit = p3(&capdiv(&["pole", s(&json)], None).ok_json()["limit"]);
+        let shown = format!(
+            "[{:.6}, {:.6}, {:.6}]",
+            limit[0].abs(),
+            limit[1].abs(),
+            limit[2]
+        );
+        let section = &text[text.find(&format!("{name}: ")).unwrap()..];
+        assert!(
+            section.contains(&shown),
+            "{name}: limit {shown} not in summary"
+        );
+        let obj = std::fs::read_to_string(out.join(format!("{name}.obj"))).unwrap();
+        assert_eq!(
+            obj.lines().filter(|l| l.starts_with("f ")).count(),
+            24 * n * 16
+        );
+    }
+    // The monkey saddle's c0 by (3): 1/6·3·(1/32) − 5/96·3·(1/32) = 11/1024.
+    assert!(text.contains("[0.000000, 0.000000, 0.010742]"), "{text}");
+
     // The paraboloid z = (x² + y²)/2 is reproduced: K = 1, H = 1 (see
     // tests/pole.rs for the derivation).
     let pole = capdiv(&["pole", s(&out.join("paraboloid.json"))], None).ok_json();
@@ -81,7 +112,7 @@ fn demo_writes_its_files_and_summary() {
     // A second run replaces the files in place.
     let again = capdiv(&["demo", "--out", s(&out)], None);
     again.assert_ok();
-    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 9);
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 15);
 }
 
 #[test]

@@ -31,8 +31,9 @@ fn curve(b: [[f64; 3]; 5], t: f64) -> [f64; 3] {
     let mut b = b;
     for r in 1..5 {
         for k in 0..5 - r {
-            for c in 0..3 {
-                b[k][c] = (1.0 - t) * b[k][c] + t * b[k + 1][c];
+            let next = b[k + 1];
+            for (x, y) in b[k].iter_mut().zip(next) {
+                *x = (1.0 - t) * *x + t * y;
             }
         }
     }

@@ -104,23 +104,326 @@ fn wrong_schema() {
     );
 }
 
+/// Every command that reads an EG input, with the given input on stdin.
+fn fails_eg_everywhere(input: &str, needle: &str) {
+    for cmd in [
+        &["refine", "-"][..],
+        &["refine", "--precision", "f32", "--steps", "2", "-"],
+        &["refine", "--scheme", "eg", "--steps", "0", "-"],
+        &["pole", "-"],
+        &["pole", "--precision", "f32", "-"],
+        &["patches", "--depth", "2", "-"],
+        &["patches", "--depth", "1", "--format", "obj", "-"],
+    ] {
+        fails(cmd, Some(input.as_bytes()), needle, true);
+    }
+}
+
+fn cnet_text(n: usize) -> String {
+    let (center, sectors) = cnet(n, 1);
+    cnet_json(center, &sectors).to_string()
+}
+
 #[test]
-fn eg_kinds_are_recognised_but_not_supported_yet() {
+fn scheme_and_options_must_fit_the_kind() {
+    let (pole, links) = config(5, 3, 1);
+    let polar = polar_json(pole, &links).to_string();
+    let cnet = cnet_text(3);
+    let (center, sectors) = common::cnet(5, 2);
+    let dnet_out = capdiv(
+        &["refine", "--steps", "0", "-"],
+        Some(cnet_json(center, &sectors).to_string().as_bytes()),
+    );
+    dnet_out.assert_ok();
+    let dnet = dnet_out.stdout_str();
+    fails(
+        &["refine", "--scheme", "eg", "-"],
+        Some(polar.as_bytes()),
+        "<stdin>: --scheme eg needs a 'cnet' or 'dnet' input, got kind 'polar'",
+        true,
+    );
+    for (input, kind) in [(&cnet, "cnet"), (&dnet, "dnet")] {
+        for scheme in ["c2ps", "rts"] {
+            fails(
+                &["refine", "--scheme", scheme, "-"],
+                Some(input.as_bytes()),
+                &format!("--scheme {scheme} needs a 'polar' input, got kind '{kind}'"),
+                true,
+            );
+        }
+        fails(
+            &["refine", "--first-step", "plain", "-"],
+            Some(input.as_bytes()),
+            "--first-step applies to --scheme c2ps only",
+            true,
+        );
+        fails(
+            &["patches", "--depth", "1", "--first-step", "plain", "-"],
+            Some(input.as_bytes()),
+            "--first-step applies to polar inputs only",
+            true,
+        );
+    }
+    fails(
+        &["refine", "--table", "t.json", "-"],
+        Some(polar.as_bytes()),
+        "--table applies to --scheme eg only",
+        true,
+    );
+    fails(
+        &["refine", "--scheme", "c2ps", "--table", "t.json", "-"],
+        Some(cnet.as_bytes()),
+        "--table applies to --scheme eg only",
+        true,
+    );
+    fails(
+        &["patches", "--depth", "1", "--table", "t.json", "-"],
+        Some(polar.as_bytes()),
+        "--table applies to EG inputs (cnet, dnet) only",
+        true,
+    );
+}
+
+#[test]
+fn eg_schema_errors() {
+    let p = "[0, 0, 0]";
+    let five = [p; 5].join(", ");
+    let six = [p; 6].join(", ");
+    fails_eg_everywhere(
+        &format!(r#"{{"kind": "cnet", "sectors": [[{six}], [{six}], [{six}]]}}"#),
+        "missing field `center`",
+    );
+    fails_eg_everywhere(
+        &format!(r#"{{"kind": "cnet", "center": {p}, "sectors": [[{six}], [{six}], [{five}]]}}"#),
+        "wrong schema",
+    );
+    fails_eg_everywhere(
+        &format!(r#"{{"kind": "cnet", "center": {p}, "c0": {p}, "sectors": [[{six}]]}}"#),
+        "unknown field `c0`",
+    );
+    fails_eg_everywhere(
+        &format!(r#"{{"kind": "dnet", "sectors": [[{six}], [{six}], [{six}]]}}"#),
+        "wrong schema",
+    );
+}
+
+#[test]
+fn eg_kernel_errors() {
     let p = "[0, 0, 0]";
     let six = [p; 6].join(", ");
     let twelve = [p; 12].join(", ");
-    fails_everywhere(
-        &format!(r#"{{"kind": "cnet", "center": {p}, "sectors": [[{six}], [{six}], [{six}]]}}"#),
-        "kind 'cnet' is not supported yet",
+    let cnet_of = |n: usize| {
+        let secs = vec![format!("[{six}]"); n].join(", ");
+        format!(r#"{{"kind": "cnet", "center": {p}, "sectors": [{secs}]}}"#)
+    };
+    let dnet_of = |n: usize| {
+        let secs = vec![format!("[{twelve}]"); n].join(", ");
+        format!(r#"{{"kind": "dnet", "sectors": [{secs}]}}"#)
+    };
+    for (n, needle) in [
+        (0, "valence 0 is below 3"),
+        (2, "valence 2 is below 3"),
+        (11, "valence 11 is not supported"),
+    ] {
+        fails_eg_everywhere(&cnet_of(n), needle);
+        fails_eg_everywhere(&dnet_of(n), needle);
+    }
+    // Valences 6..10 have no built-in rule: refine and patches need a table,
+    // pole (c0 by (3) or (4)) and refine --steps 0 do not.
+    for input in [cnet_of(6), dnet_of(10)] {
+        let n = if input.contains("cnet") { 6 } else { 10 };
+        let needle = format!("<stdin>: valence {n} is not supported");
+        for cmd in [
+            &["refine", "-"][..],
+            &["refine", "--steps", "1", "-"],
+            &["patches", "--depth", "1", "-"],
+        ] {
+            fails(cmd, Some(input.as_bytes()), &needle, true);
+        }
+        capdiv(&["pole", "-"], Some(input.as_bytes())).assert_ok();
+        capdiv(&["refine", "--steps", "0", "-"], Some(input.as_bytes())).assert_ok();
+    }
+    // Finite in f64, infinite in f32.
+    let (center, mut sectors) = cnet(3, 5);
+    sectors[1][3][2] = 1e39;
+    let big = cnet_json(center, &sectors).to_string();
+    for cmd in [
+        &["refine", "--precision", "f32", "-"][..],
+        &["pole", "--precision", "f32", "-"],
+        &["patches", "--precision", "f32", "--depth", "1", "-"],
+    ] {
+        fails(
+            cmd,
+            Some(big.as_bytes()),
+            "a coordinate is not finite",
+            true,
+        );
+    }
+    capdiv(&["refine", "-"], Some(big.as_bytes())).assert_ok();
+    // Overflow in f64 while raising to the d-net (differences to the center
+    // exceed f64::MAX): finite input, non-finite result.
+    let (_, mut sectors) = cnet(5, 6);
+    for p in sectors.iter_mut().flatten() {
+        *p = [1.7e308, 0.0, 0.0];
+    }
+    let huge = cnet_json([-1.7e308, 0.0, 0.0], &sectors).to_string();
+    fails(
+        &["refine", "--steps", "3", "-"],
+        Some(huge.as_bytes()),
+        "not finite",
+        true,
     );
-    fails_everywhere(
-        &format!(r#"{{"kind": "dnet", "sectors": [[{twelve}], [{twelve}], [{twelve}]]}}"#),
-        "kind 'dnet' is not supported yet",
+}
+
+/// A table file in `dir` from the spec's n = 3 arrays changed by `edit`.
+fn table_file(
+    dir: &Path,
+    name: &str,
+    edit: impl FnOnce(&mut serde_json::Value),
+) -> std::path::PathBuf {
+    let mut t = table_json(3, SPEC_N3);
+    edit(&mut t);
+    write_json(dir, name, &t)
+}
+
+#[test]
+fn spectrum_and_table_errors() {
+    let dir = tempdir();
+    let d = dir.path();
+    fails(
+        &["spectrum", "--valence", "6"],
+        None,
+        "valence 6: valence 6 is not supported",
+        true,
     );
-    fails_everywhere(
-        &format!(r#"{{"kind": "dnet", "c0": {p}, "sectors": []}}"#),
-        "kind 'dnet' is not supported yet",
+    fails(
+        &["spectrum", "--valence", "2"],
+        None,
+        "valence 2 is below 3",
+        true,
     );
+    fails(
+        &["spectrum", "--valence", "11"],
+        None,
+        "valence 11 is not supported",
+        true,
+    );
+    fails(&["spectrum"], None, "--valence", false);
+    // The kernel's checks of a user table, each named (spec §6-§8).
+    let cases: Vec<(std::path::PathBuf, &str)> = vec![
+        (
+            table_file(d, "rows.json", |t| {
+                t["A11"].as_array_mut().unwrap().pop();
+            }),
+            "rows.json: rule table has the wrong shape",
+        ),
+        (
+            table_file(d, "big.json", |t| t["A11"][0][0] = 100000.into()),
+            "big.json: rule table has the wrong shape",
+        ),
+        (
+            table_file(d, "huge.json", |t| t["A11"][0][0] = 1e15.into()),
+            "wrong schema",
+        ),
+        (
+            table_file(d, "i64.json", |t| t["A11"][0][0] = 10_000_000_000i64.into()),
+            "i64.json: rule table has the wrong shape",
+        ),
+        (
+            // A31 rows 0 and 1 are tied by the spoke symmetry (§6).
+            table_file(d, "sym.json", |t| t["A31"][1][1] = 17.into()),
+            "sym.json: rule table violates the EG symmetries",
+        ),
+        (
+            table_file(d, "sum.json", |t| t["A22"][0][10] = 99999.into()),
+            "sum.json: rule table rows do not sum as required",
+        ),
+        (
+            table_file(d, "lambda.json", |t| t["A21"][0][11] = 30229.into()),
+            "lambda.json: rule table's subdominant eigenvalue is not Catmull-Clark's",
+        ),
+        (
+            table_file(d, "short.json", |t| {
+                t["A11"][0].as_array_mut().unwrap().pop();
+            }),
+            "short.json: wrong schema: A11 row 0 has 11 entries, 12 expected",
+        ),
+        (
+            table_file(d, "float.json", |t| t["A22"][1][3] = 0.5.into()),
+            "float.json: wrong schema",
+        ),
+        (
+            table_file(d, "extra.json", |t| t["A12"] = serde_json::json!([])),
+            "unknown field `A12`",
+        ),
+    ];
+    for (file, needle) in &cases {
+        fails(
+            &["spectrum", "--valence", "3", "--table", s(file)],
+            None,
+            needle,
+            true,
+        );
+    }
+    // The same tables refused by refine and patches.
+    let (center, sectors) = cnet(3, 7);
+    let net = write_json(d, "c.json", &cnet_json(center, &sectors));
+    for (file, needle) in &cases[..4] {
+        fails(&["refine", "--table", s(file), s(&net)], None, needle, true);
+        fails(
+            &["patches", "--depth", "1", "--table", s(file), s(&net)],
+            None,
+            needle,
+            true,
+        );
+    }
+    // A table for n = 4 (regular, no EG rule): the kernel's shape error.
+    let four = write_json(
+        d,
+        "four.json",
+        &serde_json::json!({"valence": 4, "A11": [], "A22": [], "A21": [], "A31": [], "A32": []}),
+    );
+    fails(
+        &["spectrum", "--valence", "4", "--table", s(&four)],
+        None,
+        "four.json: rule table has the wrong shape",
+        true,
+    );
+    // A table of another valence than asked for.
+    let good = write_json(d, "good.json", &table_json(3, SPEC_N3));
+    fails(
+        &["spectrum", "--valence", "5", "--table", s(&good)],
+        None,
+        "good.json: the rule table is for valence 3, valence 5 has valence 5",
+        true,
+    );
+    let (center, sectors) = cnet(5, 8);
+    let net5 = write_json(d, "c5.json", &cnet_json(center, &sectors));
+    fails(
+        &["refine", "--table", s(&good), s(&net5)],
+        None,
+        "the rule table is for valence 3, ",
+        true,
+    );
+    fails(
+        &[
+            "spectrum",
+            "--valence",
+            "3",
+            "--table",
+            s(&d.join("none.json")),
+        ],
+        None,
+        "none.json",
+        true,
+    );
+    fails(
+        &["spectrum", "--valence", "3", "--table", "-"],
+        Some(b"{\"valence\": 3,"),
+        "malformed JSON",
+        true,
+    );
+    capdiv(&["spectrum", "--valence", "3", "--table", s(&good)], None).assert_ok();
 }
 
 #[test]
@@ -250,9 +553,9 @@ fn io_and_usage_errors() {
         false,
     );
     fails(
-        &["refine", "--scheme", "eg", "x.json"],
+        &["refine", "--scheme", "bogus", "x.json"],
         None,
-        "invalid value 'eg'",
+        "invalid value 'bogus'",
         false,
     );
     fails(&["patches", "x.json"], None, "--depth", false);
@@ -288,9 +591,10 @@ fn io_and_usage_errors() {
 fn help_and_version_succeed() {
     let help = capdiv(&["--help"], None);
     help.assert_ok();
-    for cmd in ["refine", "pole", "patches", "demo"] {
+    for cmd in ["refine", "pole", "patches", "spectrum", "demo"] {
         assert!(help.stdout_str().contains(cmd));
     }
     capdiv(&["--version"], None).assert_ok();
     capdiv(&["refine", "--help"], None).assert_ok();
+    capdiv(&["spectrum", "--help"], None).assert_ok();
 }
