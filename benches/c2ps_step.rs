@@ -1,6 +1,8 @@
 //! Time per output point of one C²PS step, valence 6·2^k → 6·2^(k+1), for
-//! k = 0..13 (up to valence 49152), in f64 and f32. The step is O(n), so the
-//! time per point must stay flat. `scripts/bench-table.py` turns the results
+//! k = 0..13 (up to valence 49152), in f64 and f32, and the independent
+//! reference's literal O(n²) step (`capdiv_reference::c2ps::step`, rules
+//! (1)–(5) as the paper writes them) for k = 0..9. The kernel's step is O(n),
+//! so its time per point must stay flat; the literal one grows with n. `scripts/bench-table.py` turns the results
 //! into the README's table.
 
 use capdiv::{FirstStep, PolarNet, Real};
@@ -45,6 +47,23 @@ fn bench_level<R: Real, const CAP: usize>(c: &mut Criterion, group: &str, k: u32
     g.finish();
 }
 
+/// The reference's literal step at the same valence (its time per output
+/// point grows linearly with n: every new point sums over the whole 1-link).
+fn bench_reference(c: &mut Criterion, k: u32) {
+    let (pole, links) = sample::<f64>();
+    let mut cfg = capdiv_reference::polar::Polar::new(pole, links);
+    for _ in 0..k {
+        cfg = capdiv_reference::c2ps::step_first_uniform(&cfg);
+    }
+    let n_out = 2 * cfg.valence();
+    let mut g = c.benchmark_group("c2ps_step_reference");
+    g.throughput(Throughput::Elements(n_out as u64));
+    g.bench_with_input(BenchmarkId::from_parameter(n_out), &cfg, |b, cfg| {
+        b.iter(|| black_box(capdiv_reference::c2ps::step(cfg)))
+    });
+    g.finish();
+}
+
 macro_rules! levels {
     ($c:expr, $r:ty, $group:expr; $($k:literal),*) => {
         $( bench_level::<$r, { 6 << ($k + 1) }>($c, $group, $k); )*
@@ -54,6 +73,9 @@ macro_rules! levels {
 fn benches(c: &mut Criterion) {
     levels!(c, f64, "c2ps_step_f64"; 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13);
     levels!(c, f32, "c2ps_step_f32"; 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13);
+    for k in 0..=9 {
+        bench_reference(c, k);
+    }
 }
 
 fn main() {
