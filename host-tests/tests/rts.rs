@@ -8,6 +8,7 @@ mod common;
 use capdiv_reference::jet;
 use capdiv_reference::polar::Polar;
 use capdiv_reference::rts;
+use capdiv_reference::vec3::{max_abs_diff, scale};
 use common::*;
 use nalgebra::Complex;
 use proptest::prelude::*;
@@ -100,8 +101,53 @@ fn table1_right_eigenvectors_are_eigenvectors_of_the_matrix() {
     }
 }
 
+/// For n = 3, 4 Lemma 5 fails for RTS (not for C²PS, whose first step
+/// doubles the valence before the aliasing matters): with `b̂_1 = ¾` (n = 3),
+/// `p1, p2` shrink by ¾ per step; with `b̂_2 = ½` (n = 4), `p4` shrinks by ½.
+/// Data: Table-1 eigen-configurations with one `p_k ≠ 0` (hand computation
+/// above; the kernel's `rts_step` and `PoleJet`).
+#[test]
+fn rts_lemma5_fails_for_valences_3_and_4() {
+    for (n, k, factor) in [(3usize, 1usize, 0.75), (3, 2, 0.75), (4, 4, 0.5)] {
+        let mut p = [[0.0; 3]; 6];
+        p[k] = [1.0, 2.0, -1.0];
+        let cfg = jet::eigen_configuration(&p, n, 5);
+        let mut net: Box<Net> = Box::new(to_net(&cfg));
+        let p0 = capdiv::PoleJet::of(&*net).p[k].0;
+        net.rts_step();
+        let p1 = capdiv::PoleJet::of(&*net).p[k].0;
+        for c in 0..3 {
+            assert!(
+                (p1[c] - factor * p0[c]).abs() < 1e-12,
+                "n {n}, p{k}: {p1:?} vs {factor}·{p0:?}"
+            );
+            assert!((p1[c] - jet::EIGENVALUES[k] * p0[c]).abs() > 0.1 * p0[c].abs());
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Lemma 5 for RTS (spec §4), valences 5..64, up to 8 steps:
+    /// `p_k` after m RTS steps is `λ_k^m p_k`, to 1e-12 · size.
+    #[test]
+    fn rts_eigencoefficients_scale_by_eigenvalue_powers(
+        cfg in config(5..=64, 2..=5),
+        steps in 1u32..=8,
+    ) {
+        let p = jet::coefficients(&cfg);
+        let mut net: Box<Net> = Box::new(to_net(&cfg));
+        for m in 1..=steps {
+            net.rts_step();
+            let pm = capdiv::PoleJet::of(&*net).p;
+            for k in 0..6 {
+                let l = jet::EIGENVALUES[k].powi(m as i32);
+                let err = max_abs_diff(pm[k].0, scale(l, p[k]));
+                prop_assert!(err <= 1e-12 * cfg.max_abs(), "step {m}, p{k}: {err:e}");
+            }
+        }
+    }
 
     /// The kernel's in-place O(n) `rts_step`, applied 1..3 times, equals the
     /// dense matrix product, and so does the literal O(n²) `rts::step`.
