@@ -108,9 +108,4 @@ impl Table {
         RuleTable::new(self.valence, a11, a22, a21, a31, a32)
             .map_err(|e| CliError::kernel(&self.name, e))
     }
-
-    /// The file's rows of array `k` (0..5 in the order A11 A22 A21 A31 A32).
-    pub fn rows(&self, k: usize) -> &[Row] {
-        self.rows.get(k).map_or(&[], Vec::as_slice)
-    }
 }
