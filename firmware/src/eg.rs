@@ -9,10 +9,7 @@
 use crate::report::{point, Failure};
 use crate::sample::{EG_CENTER, EG_NODES_3, EG_NODES_5};
 use capdiv::eg::{CNet, EgSubdivision};
-use capdiv::{Error, Point3};
-use core::cell::UnsafeCell;
-use core::mem::MaybeUninit;
-use core::sync::atomic::{AtomicBool, Ordering};
+use capdiv::Point3;
 
 /// EG steps per sample.
 pub const STEPS: u32 = 4;
@@ -23,66 +20,36 @@ fn to_f32<const M: usize>(nodes: &[[f64; 3]; M]) -> [[f32; 3]; M] {
     nodes.map(|p| p.map(|c| c as f32))
 }
 
-fn cnet<const M: usize>(nodes: &[[f64; 3]; M]) -> Result<CNet<f32>, Error> {
-    CNet::new(EG_CENTER.map(|c| c as f32), &to_f32(nodes))
-}
-
-/// Runs both samples, one after the other in the same static; logs as it goes.
+/// Runs both samples, one after the other in the same statics; logs as it goes.
 #[inline(never)]
 pub fn run() -> Result<(), Failure> {
-    sample(&EG_NODES_3)?;
-    sample(&EG_NODES_5)
+    let (net, sub) = statics()?;
+    sample(&EG_NODES_3, net, sub)?;
+    sample(&EG_NODES_5, net, sub)
 }
 
-/// One sample: c-net, its subdivision built into [`SLOT`], steps, report.
-#[inline(never)]
-fn sample<const M: usize>(nodes: &[[f64; 3]; M]) -> Result<(), Failure> {
-    let net = cnet(nodes)?;
-    SLOT.with(
-        || EgSubdivision::from_cnet(&net),
-        |sub| match sub {
-            Ok(sub) => one(&net, sub),
-            Err(e) => Err(Failure::Kernel(*e)),
-        },
-    )
-}
-
-/// The static an EG subdivision lives in (`.bss`, size known at link time),
-/// reused by each sample in turn: with two, the micro:bit's 16 KiB would not
+/// The c-net and the subdivision live in statics (`.bss`, size known at link
+/// time), const-constructed empty and loaded in place by `CNet::reset` and
+/// `EgSubdivision::reset_from_cnet`, so no net-sized value is ever on the
+/// stack. Each sample reuses them: with two, the micro:bit's 16 KiB would not
 /// hold the statics and the stack.
-struct Slot {
-    value: UnsafeCell<MaybeUninit<Result<Sub, Error>>>,
-    busy: AtomicBool,
+#[inline(never)]
+fn statics() -> Result<(&'static mut CNet<f32>, &'static mut Sub), Failure> {
+    let net = cortex_m::singleton!(EG_CNET: CNet<f32> = CNet::empty()).ok_or(Failure::Reused)?;
+    let sub = cortex_m::singleton!(EG_SUB: Sub = Sub::empty()).ok_or(Failure::Reused)?;
+    Ok((net, sub))
 }
 
-// SAFETY: `busy` admits one `with` at a time (load/store suffice: single
-// core, never used from an interrupt).
-unsafe impl Sync for Slot {}
-
-static SLOT: Slot = Slot {
-    value: UnsafeCell::new(MaybeUninit::uninit()),
-    busy: AtomicBool::new(false),
-};
-
-impl Slot {
-    /// Writes `init()` into the slot and runs `f` on it; [`Failure::Reused`]
-    /// if called from inside `f`.
-    fn with<T>(
-        &self,
-        init: impl FnOnce() -> Result<Sub, Error>,
-        f: impl FnOnce(&mut Result<Sub, Error>) -> Result<T, Failure>,
-    ) -> Result<T, Failure> {
-        if self.busy.load(Ordering::Relaxed) {
-            return Err(Failure::Reused);
-        }
-        self.busy.store(true, Ordering::Relaxed);
-        // SAFETY: `busy` guarantees no other reference into the slot exists;
-        // the old value (plain data, no Drop) is simply overwritten.
-        let value = unsafe { (*self.value.get()).write(init()) };
-        let out = f(value);
-        self.busy.store(false, Ordering::Relaxed);
-        out
-    }
+/// One sample: the c-net and its subdivision loaded in place, steps, report.
+#[inline(never)]
+fn sample<const M: usize>(
+    nodes: &[[f64; 3]; M],
+    net: &mut CNet<f32>,
+    sub: &mut Sub,
+) -> Result<(), Failure> {
+    net.reset(EG_CENTER.map(|c| c as f32), &to_f32(nodes))?;
+    sub.reset_from_cnet(net)?;
+    one(net, sub)
 }
 
 /// Quarter-grid parameter `i/4`.

@@ -89,42 +89,69 @@ pub struct CNet<R> {
 }
 
 impl<R: Real> CNet<R> {
+    /// An empty c-net (valence 0), usable in a `static` (all-zero bytes, so
+    /// it lands in `.bss`): fill it in place with [`CNet::reset`].
+    pub const fn empty() -> Self {
+        CNet {
+            center: Point3([R::ZERO; 3]),
+            sectors: Vec::new(),
+        }
+    }
+
     /// A c-net from its center and `6n` nodes, sector by sector in the §1
     /// order. Errors, in this order: [`Error::WrongLength`] (not a multiple of
     /// 6), [`Error::ValenceTooSmall`] (`n < 3`), [`Error::ValenceUnsupported`]
     /// (`n > 10`), [`Error::NonFinite`].
     pub fn new(center: [R; 3], nodes: &[[R; 3]]) -> Result<Self, Error> {
-        sector_count::<C_SECTOR>(nodes.len())?;
-        let (chunks, _) = nodes.as_chunks::<C_SECTOR>();
-        Self::from_sectors(center, chunks)
+        let mut net = Self::empty();
+        net.reset(center, nodes)?;
+        Ok(net)
     }
 
     /// A c-net from flat coordinates: `coords` holds the `6n` nodes as `x, y, z`
     /// triples (the layout of the C ABI and WASM). Errors as [`CNet::new`],
     /// with [`Error::WrongLength`] counted in coordinates (a multiple of 18).
     pub fn from_flat(center: [R; 3], coords: &[R]) -> Result<Self, Error> {
-        sector_count::<{ 3 * C_SECTOR }>(coords.len())?;
-        Self::new(center, triples(coords)?)
+        let mut net = Self::empty();
+        net.reset_flat(center, coords)?;
+        Ok(net)
     }
 
     /// A c-net from its center and `n` sectors of 6 nodes (§1 order).
     /// Errors as [`CNet::new`].
     pub fn from_sectors(center: [R; 3], sectors: &[[[R; 3]; C_SECTOR]]) -> Result<Self, Error> {
+        let mut net = Self::empty();
+        net.reset_sectors(center, sectors)?;
+        Ok(net)
+    }
+
+    /// [`CNet::new`] in place: loads the c-net into `self`, whatever it held.
+    /// Every check runs before anything is written, so on error `self` is
+    /// unchanged; stack use is a few words.
+    pub fn reset(&mut self, center: [R; 3], nodes: &[[R; 3]]) -> Result<(), Error> {
+        sector_count::<C_SECTOR>(nodes.len())?;
+        let (chunks, _) = nodes.as_chunks::<C_SECTOR>();
+        self.reset_sectors(center, chunks)
+    }
+
+    /// [`CNet::from_flat`] in place; on error `self` is unchanged.
+    pub fn reset_flat(&mut self, center: [R; 3], coords: &[R]) -> Result<(), Error> {
+        sector_count::<{ 3 * C_SECTOR }>(coords.len())?;
+        self.reset(center, triples(coords)?)
+    }
+
+    /// [`CNet::from_sectors`] in place; on error `self` is unchanged.
+    pub fn reset_sectors(
+        &mut self,
+        center: [R; 3],
+        sectors: &[[[R; 3]; C_SECTOR]],
+    ) -> Result<(), Error> {
         check_valence(sectors.len())?;
         if !finite(&center) || !sectors.iter().flatten().all(finite) {
             return Err(Error::NonFinite);
         }
-        let mut out = Vec::new();
-        for s in sectors {
-            out.push(s.map(Point3))
-                .map_err(|_| Error::ValenceUnsupported {
-                    valence: sectors.len(),
-                })?;
-        }
-        Ok(CNet {
-            center: Point3(center),
-            sectors: out,
-        })
+        self.center = Point3(center);
+        fill(&mut self.sectors, sectors)
     }
 
     /// The valence `n`.
@@ -184,19 +211,35 @@ impl<R: Real> CNet<R> {
     /// the type's maximum); [`EgSubdivision::new`](super::EgSubdivision::new)
     /// rejects such a net with [`Error::NonFinite`].
     pub fn to_dnet(&self) -> DNet<R> {
+        let mut out = DNet::empty();
+        self.raise_into(&mut out);
+        out
+    }
+
+    /// Sector `s` of [`CNet::to_dnet`].
+    pub(crate) fn raised_sector(&self, s: usize) -> DSector<R> {
         let e = self.center;
-        let mut sectors: Vec<DSector<R>, MAX_VALENCE> = Vec::new();
-        for s in 0..self.valence() {
-            let mut d = [e; D_SECTOR];
-            for (out, stencil) in d.iter_mut().zip(RAISE.iter()) {
-                *out = e + self.apply(s, stencil);
-            }
-            // Cannot fail: as many sectors as the c-net, which fits.
-            let _ = sectors.push(d);
+        let mut d = [e; D_SECTOR];
+        for (out, stencil) in d.iter_mut().zip(RAISE.iter()) {
+            *out = e + self.apply(s, stencil);
         }
-        DNet {
-            c0: self.limit(),
-            sectors,
+        d
+    }
+
+    /// `true` when [`CNet::to_dnet`] would be finite (computed, not stored).
+    pub(crate) fn raises_finite(&self) -> bool {
+        self.limit().is_finite()
+            && (0..self.valence()).all(|s| self.raised_sector(s).iter().all(Point3::is_finite))
+    }
+
+    /// [`CNet::to_dnet`] written into `out` (one sector at a time, no
+    /// net-sized temporary).
+    pub(crate) fn raise_into(&self, out: &mut DNet<R>) {
+        out.c0 = self.limit();
+        out.sectors.clear();
+        for s in 0..self.valence() {
+            // Cannot fail: as many sectors as the c-net, which fits.
+            let _ = out.sectors.push(self.raised_sector(s));
         }
     }
 
@@ -224,49 +267,93 @@ pub struct DNet<R> {
 }
 
 impl<R: Real> DNet<R> {
+    /// An empty d-net (valence 0), usable in a `static` (all-zero bytes, so
+    /// it lands in `.bss`): fill it in place with [`DNet::reset`] or
+    /// [`DNet::reset_from_cnet`].
+    pub const fn empty() -> Self {
+        DNet {
+            c0: Point3([R::ZERO; 3]),
+            sectors: Vec::new(),
+        }
+    }
+
     /// A d-net from `12n` nodes, sector by sector in the §2 order. `c0`: the
     /// limit point if known, else computed by formula (4).
     /// Errors, in this order: [`Error::WrongLength`] (not a multiple of 12),
     /// [`Error::ValenceTooSmall`], [`Error::ValenceUnsupported`], [`Error::NonFinite`].
     pub fn new(nodes: &[[R; 3]], c0: Option<[R; 3]>) -> Result<Self, Error> {
-        sector_count::<D_SECTOR>(nodes.len())?;
-        let (chunks, _) = nodes.as_chunks::<D_SECTOR>();
-        Self::from_sectors(chunks, c0)
+        let mut net = Self::empty();
+        net.reset(nodes, c0)?;
+        Ok(net)
     }
 
     /// A d-net from flat coordinates (`12n` nodes as `x, y, z` triples).
     /// Errors as [`DNet::new`], with [`Error::WrongLength`] counted in
     /// coordinates (a multiple of 36).
     pub fn from_flat(coords: &[R], c0: Option<[R; 3]>) -> Result<Self, Error> {
-        sector_count::<{ 3 * D_SECTOR }>(coords.len())?;
-        Self::new(triples(coords)?, c0)
+        let mut net = Self::empty();
+        net.reset_flat(coords, c0)?;
+        Ok(net)
     }
 
     /// A d-net from `n` sectors of 12 nodes; `c0` as in [`DNet::new`].
     pub fn from_sectors(sectors: &[[[R; 3]; D_SECTOR]], c0: Option<[R; 3]>) -> Result<Self, Error> {
+        let mut net = Self::empty();
+        net.reset_sectors(sectors, c0)?;
+        Ok(net)
+    }
+
+    /// [`DNet::new`] in place: loads the d-net into `self`, whatever it held.
+    /// Every check runs before anything is written, so on error `self` is
+    /// unchanged; stack use is a few words.
+    pub fn reset(&mut self, nodes: &[[R; 3]], c0: Option<[R; 3]>) -> Result<(), Error> {
+        sector_count::<D_SECTOR>(nodes.len())?;
+        let (chunks, _) = nodes.as_chunks::<D_SECTOR>();
+        self.reset_sectors(chunks, c0)
+    }
+
+    /// [`DNet::from_flat`] in place; on error `self` is unchanged.
+    pub fn reset_flat(&mut self, coords: &[R], c0: Option<[R; 3]>) -> Result<(), Error> {
+        sector_count::<{ 3 * D_SECTOR }>(coords.len())?;
+        self.reset(triples(coords)?, c0)
+    }
+
+    /// [`DNet::from_sectors`] in place; on error `self` is unchanged.
+    pub fn reset_sectors(
+        &mut self,
+        sectors: &[[[R; 3]; D_SECTOR]],
+        c0: Option<[R; 3]>,
+    ) -> Result<(), Error> {
         check_valence(sectors.len())?;
         if !sectors.iter().flatten().all(finite) || !c0.as_ref().is_none_or(finite) {
             return Err(Error::NonFinite);
         }
-        let mut out = Vec::new();
-        for s in sectors {
-            out.push(s.map(Point3))
-                .map_err(|_| Error::ValenceUnsupported {
-                    valence: sectors.len(),
-                })?;
-        }
-        let mut net = DNet {
-            c0: Point3::ZERO,
-            sectors: out,
-        };
-        net.c0 = match c0 {
+        let c0 = match c0 {
             Some(p) => Point3(p),
-            None => net.fitted_limit(),
+            None => fitted_limit(sectors.iter().map(|s| s.map(Point3))),
         };
-        if !net.c0.is_finite() {
+        if !c0.is_finite() {
             return Err(Error::NonFinite);
         }
-        Ok(net)
+        self.c0 = c0;
+        fill(&mut self.sectors, sectors)
+    }
+
+    /// [`CNet::to_dnet`] in place: the degree-raised d-net (§3), `c0` by (3).
+    /// Infallible like `to_dnet` (see there for when it is not finite).
+    pub fn reset_from_cnet(&mut self, net: &CNet<R>) {
+        net.raise_into(self);
+    }
+
+    /// Copies `other` into `self` sector by sector (no net-sized temporary,
+    /// unlike `*self = other.clone()`).
+    pub(crate) fn assign(&mut self, other: &DNet<R>) {
+        self.c0 = other.c0;
+        self.sectors.clear();
+        for sec in other.sectors.iter() {
+            // Cannot fail: both nets have the same capacity.
+            let _ = self.sectors.push(*sec);
+        }
     }
 
     /// The valence `n`.
@@ -305,16 +392,38 @@ impl<R: Real> DNet<R> {
     /// The limit point fitted to this d-net by formula (4) (§4). For a d-net
     /// made by [`CNet::to_dnet`] it equals (3) of that c-net (up to rounding).
     pub fn fitted_limit(&self) -> Point3<R> {
-        let w = limit_weights(self.valence());
-        let origin = self.sectors.first().map(|s| s[10]).unwrap_or(Point3::ZERO);
-        let mut acc = Point3::ZERO;
-        for sec in self.sectors.iter() {
-            for (p, wk) in sec.iter().zip(w.iter()) {
-                acc += (*p - origin) * *wk;
-            }
-        }
-        origin + acc
+        fitted_limit(self.sectors.iter().copied())
     }
+}
+
+/// Formula (4) over `n` sectors of nodes (`n` = the iterator's length).
+fn fitted_limit<R: Real>(sectors: impl ExactSizeIterator<Item = DSector<R>>) -> Point3<R> {
+    let w = limit_weights(sectors.len());
+    let mut origin = None;
+    let mut acc = Point3::ZERO;
+    for sec in sectors {
+        let o = *origin.get_or_insert(sec[10]);
+        for (p, wk) in sec.iter().zip(w.iter()) {
+            acc += (*p - o) * *wk;
+        }
+    }
+    origin.unwrap_or(Point3::ZERO) + acc
+}
+
+/// Replaces the points of `out` by `sectors` (at most [`MAX_VALENCE`], checked
+/// by the caller; [`Error::ValenceUnsupported`] otherwise, `out` then cleared).
+fn fill<R: Real, const K: usize>(
+    out: &mut Vec<[Point3<R>; K], MAX_VALENCE>,
+    sectors: &[[[R; 3]; K]],
+) -> Result<(), Error> {
+    out.clear();
+    for s in sectors {
+        out.push(s.map(Point3))
+            .map_err(|_| Error::ValenceUnsupported {
+                valence: sectors.len(),
+            })?;
+    }
+    Ok(())
 }
 
 /// The per-sector weights `e_ij / γ_n` of formula (4), node order `i + 4j`.

@@ -5,6 +5,7 @@
 use super::layout::{Term, CENTER, CENTER_RING, REGULAR};
 use super::net::{sector_at, DNet, DSector};
 use super::rule::{InnerNode, RuleTable, WEIGHT_SCALE};
+use super::MAX_VALENCE;
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
@@ -89,66 +90,177 @@ pub(crate) fn refine<R: Real>(
             .push([old.c0; 12])
             .map_err(|_| Error::ValenceUnsupported { valence: n })?;
     }
+    new_nodes(old, rule, &mut |s, k, p| {
+        if let Some(q) = out.sectors.get_mut(s).and_then(|sec| sec.get_mut(k)) {
+            *q = p;
+        }
+        true
+    })?;
+    Ok(())
+}
+
+/// `true` when [`refine`] of `old` would give a finite net: the same
+/// computation (so bit-identical values), each new node checked and dropped.
+pub(crate) fn refines_finite<R: Real>(old: &DNet<R>, rule: Rule<'_, '_>) -> Result<bool, Error> {
+    new_nodes(old, rule, &mut |_, _, p| p.is_finite())
+}
+
+/// Computes every node of the step from `old` and hands it to
+/// `emit(sector, node index, value)`; stops early (returning `false`) when
+/// `emit` does. One routine for [`refine`] and [`refines_finite`], so the
+/// step's pre-check sees exactly the values the step stores.
+fn new_nodes<R: Real>(
+    old: &DNet<R>,
+    rule: Rule<'_, '_>,
+    emit: &mut dyn FnMut(usize, usize, Point3<R>) -> bool,
+) -> Result<bool, Error> {
+    let n = old.valence();
     match rule {
         Rule::Regular => {
             let center = Some(center_node(old)?);
-            for (s, sec) in out.sectors.iter_mut().enumerate() {
-                for (k, p) in sec.iter_mut().enumerate() {
-                    *p = gather(old, s, 0, regular_stencil(k % 4, k / 4)?, center)?;
+            for s in 0..n {
+                for k in 0..12 {
+                    if !emit(
+                        s,
+                        k,
+                        gather(old, s, 0, regular_stencil(k % 4, k / 4)?, center)?,
+                    ) {
+                        return Ok(false);
+                    }
                 }
             }
+            Ok(true)
         }
         Rule::Eg(table) => {
             if table.valence() != n {
                 return Err(Error::TableShape);
             }
-            for (s, sec) in out.sectors.iter_mut().enumerate() {
+            for s in 0..n {
                 for (i, j, k) in OUTER {
-                    if let Some(p) = sec.get_mut(k) {
-                        *p = gather(old, s, 0, regular_stencil(i, j)?, None)?;
+                    if !emit(s, k, gather(old, s, 0, regular_stencil(i, j)?, None)?) {
+                        return Ok(false);
                     }
                 }
             }
-            eg_inner(old, table, out)?;
+            eg_inner(old, table, emit)
         }
     }
-    Ok(())
+}
+
+/// `Σ_ij w_ij (d_ij − c0)` over one sector, in node order (rule (7), one row).
+#[inline]
+fn row_dot<R: Real>(src: &DSector<R>, c0: Point3<R>, w: &[R; 12]) -> Point3<R> {
+    let mut acc = Point3::ZERO;
+    for (d, wk) in src.iter().zip(w.iter()) {
+        acc += (*d - c0) * *wk;
+    }
+    acc
 }
 
 /// Rule (7): `d̃_hk^s = c0 + Σ_r Σ_ij a_ij^{r,hk} (d_ij^{s+r} − c0)`, which is the
 /// spec's `a0 c0 + Σ a d` with `a0 = 1 − Σ a`. Each expanded row is built once
-/// and applied to all sectors.
-fn eg_inner<R: Real>(old: &DNet<R>, table: &RuleTable<'_>, out: &mut DNet<R>) -> Result<(), Error> {
+/// and applied to all sectors (sums per sector in `acc`).
+fn eg_inner<R: Real>(
+    old: &DNet<R>,
+    table: &RuleTable<'_>,
+    emit: &mut dyn FnMut(usize, usize, Point3<R>) -> bool,
+) -> Result<bool, Error> {
     let n = old.valence();
     let c0 = old.c0;
     for node in InnerNode::ALL {
-        let k = node.index();
         // Sums of (d − c0) start at zero; c0 is added at the end.
-        for sec in out.sectors.iter_mut() {
-            if let Some(p) = sec.get_mut(k) {
-                *p = Point3::ZERO;
-            }
-        }
+        let mut acc = [Point3::ZERO; MAX_VALENCE];
         for r in 0..n {
             let row = table.row(node, r).ok_or(Error::TableShape)?;
             let w = row.map(|a| R::ratio(a, WEIGHT_SCALE));
             let dr = i8::try_from(r).map_err(|_| Error::OutOfDomain)?;
-            for (s, sec) in out.sectors.iter_mut().enumerate() {
-                let src: &DSector<R> = sector_at(&old.sectors, s, dr)?;
-                let mut acc = Point3::ZERO;
-                for (d, wk) in src.iter().zip(w.iter()) {
-                    acc += (*d - c0) * *wk;
-                }
-                if let Some(p) = sec.get_mut(k) {
-                    *p += acc;
-                }
+            for (s, p) in acc.iter_mut().enumerate().take(n) {
+                *p += row_dot(sector_at(&old.sectors, s, dr)?, c0, &w);
             }
         }
-        for sec in out.sectors.iter_mut() {
-            if let Some(p) = sec.get_mut(k) {
-                *p = c0 + *p;
+        for (s, p) in acc.iter().enumerate().take(n) {
+            if !emit(s, node.index(), c0 + *p) {
+                return Ok(false);
             }
         }
     }
-    Ok(())
+    Ok(true)
+}
+
+/// `true` when every coordinate of `net` (nodes and `c0`) is at most
+/// `MAX/1024` in magnitude (`MAX` the type's largest finite value). Then no
+/// step can overflow: with `m` that bound, `|d − c0| ≤ 2m`; the weights of a
+/// new node sum in absolute value to 1 (§5, positive) or below `12n ≤ 120`
+/// (rule (7): every table entry is below 10⁵ in magnitude, checked by
+/// [`RuleTable::new`]); the n = 4 center node is within `6m` of `c0`; so every
+/// partial sum and every new node stays below `~250 m < MAX`.
+pub(crate) fn cannot_overflow<R: Real>(net: &DNet<R>) -> bool {
+    let mut m = R::ZERO;
+    for p in net.sectors.iter().flatten().chain([net.c0].iter()) {
+        for c in p.0.iter() {
+            let a = c.abs();
+            if a > m {
+                m = a;
+            }
+        }
+    }
+    // Scaling by a power of two is exact unless it overflows.
+    (m * R::from_f64(1024.0)).is_finite()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A d-net of valence `n` with pseudo-random nodes of magnitude up to
+    /// `amp`, each coordinate of sign chosen at random, and `c0`.
+    fn net(n: usize, amp: f64, c0: f64, seed: &mut u64) -> DNet<f64> {
+        let mut next = || {
+            *seed ^= *seed << 13;
+            *seed ^= *seed >> 7;
+            *seed ^= *seed << 17;
+            (*seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut sectors = heapless::Vec::new();
+        for _ in 0..n {
+            let sec = core::array::from_fn(|_| Point3([next() * amp, next() * amp, next() * amp]));
+            let _ = sectors.push(sec);
+        }
+        DNet {
+            c0: Point3([c0, -c0, 0.0]),
+            sectors,
+        }
+    }
+
+    /// The step's check-first path is exact: `refines_finite` says `true`
+    /// exactly when `refine` gives a finite net, and a net within `MAX/1024`
+    /// never overflows (the bound of `cannot_overflow`).
+    #[test]
+    fn finiteness_checks_agree_with_refine() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let (mut finite, mut infinite) = (0, 0);
+        for k in 0..600 {
+            let n = 3 + k % 3;
+            let amp = f64::MAX * [1e-4, 1e-3, 0.05, 0.2, 0.5, 0.9][k % 6];
+            let c0 = amp * [0.0, -0.5, 0.9][k % 3];
+            let old = net(n, amp, c0, &mut seed);
+            let table = RuleTable::builtin(n);
+            let rule = match &table {
+                Some(t) => Rule::Eg(t),
+                None => Rule::Regular,
+            };
+            let mut out = old.clone();
+            refine(&old, rule, &mut out).unwrap();
+            assert_eq!(refines_finite(&old, rule), Ok(out.is_finite()));
+            if cannot_overflow(&old) {
+                assert!(out.is_finite());
+            }
+            if out.is_finite() {
+                finite += 1;
+            } else {
+                infinite += 1;
+            }
+        }
+        assert!(finite > 50 && infinite > 50, "{finite} {infinite}");
+    }
 }

@@ -1,8 +1,8 @@
 //! `EgSubdivision`: the state of an EG cap — the current d-net, the previous
 //! one (for the last ring, §9), the rule, the level.
 
-use super::net::{CNet, DNet};
-use super::refine::{refine, Rule};
+use super::net::{check_valence, CNet, DNet};
+use super::refine::{cannot_overflow, refine, refines_finite, Rule};
 use super::ring::{ring_patch, PATCHES_PER_SECTOR};
 use super::rule::RuleTable;
 use crate::bezier::BiquarticPatch;
@@ -12,16 +12,20 @@ use crate::real::Real;
 
 /// An EG subdivision in progress (spec EG.md §5–§9).
 ///
-/// Memory: two [`DNet`]s and a borrowed table, independent of the valence
-/// (≈ 2.9 KiB for `f32`, 5.8 KiB for `f64`). [`EgSubdivision::step`] builds
-/// the new net in one more `DNet` on the stack, so a failing step leaves the
-/// state untouched.
+/// Memory: two [`DNet`]s (the current one and the previous one, which the
+/// last ring needs, §9) and a borrowed table, independent of the valence
+/// (≈ 2.9 KiB for `f32`, 5.8 KiB for `f64`). [`EgSubdivision::step`] writes
+/// the new net over the previous one, so it needs no net-sized temporary;
+/// where stack is scarce, keep an [`EgSubdivision::empty`] in a `static` and
+/// load it with [`EgSubdivision::reset_from_cnet`] (or [`EgSubdivision::reset`]).
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EgSubdivision<'t, R> {
     table: Option<RuleTable<'t>>,
-    prev: DNet<R>,
-    cur: DNet<R>,
+    /// The current net is `nets[1]` when `flip`, else `nets[0]`; the other
+    /// one is the previous net (meaningful for `level > 0`).
+    nets: [DNet<R>; 2],
+    flip: bool,
     level: u32,
 }
 
@@ -32,45 +36,136 @@ impl<R: Real> EgSubdivision<'static, R> {
     /// whose rules must come from the caller ([`EgSubdivision::with_table`]);
     /// [`Error::NonFinite`] for a net with a non-finite node (only
     /// [`CNet::to_dnet`] of a c-net whose coordinate differences overflow can
-    /// make one).
+    /// make one); [`Error::ValenceTooSmall`] for an empty net.
     pub fn new(net: DNet<R>) -> Result<Self, Error> {
-        if !net.is_finite() {
-            return Err(Error::NonFinite);
-        }
-        let n = net.valence();
-        let table = RuleTable::builtin(n);
-        if table.is_none() && n != 4 {
-            return Err(Error::ValenceUnsupported { valence: n });
-        }
-        Ok(Self::start(net, table))
+        let mut sub = Self::empty();
+        sub.reset(&net)?;
+        Ok(sub)
     }
 
-    /// [`EgSubdivision::new`] of the c-net's degree-raised d-net (§3), `c0` by (3).
+    /// [`EgSubdivision::new`] of the c-net's degree-raised d-net (§3), `c0` by
+    /// (3), built in place (no d-net temporary).
     pub fn from_cnet(net: &CNet<R>) -> Result<Self, Error> {
-        Self::new(net.to_dnet())
+        let mut sub = Self::empty();
+        sub.reset_from_cnet(net)?;
+        Ok(sub)
     }
 }
 
+/// The built-in rule of valence `n` (`None`: n = 4, regular).
+fn builtin_rule(n: usize) -> Result<Option<RuleTable<'static>>, Error> {
+    let table = RuleTable::builtin(n);
+    if table.is_none() && n != 4 {
+        return Err(Error::ValenceUnsupported { valence: n });
+    }
+    Ok(table)
+}
+
 impl<'t, R: Real> EgSubdivision<'t, R> {
+    /// An empty subdivision (valence 0, no rule), usable in a `static`
+    /// (all-zero bytes, so it lands in `.bss`): load it in place with
+    /// [`EgSubdivision::reset_from_cnet`], [`EgSubdivision::reset`] or
+    /// [`EgSubdivision::reset_with_table`]. Its [`EgSubdivision::step`]
+    /// returns [`Error::ValenceTooSmall`]; its ring is empty.
+    pub const fn empty() -> Self {
+        EgSubdivision {
+            table: None,
+            nets: [DNet::empty(), DNet::empty()],
+            flip: false,
+            level: 0,
+        }
+    }
+
     /// Starts from a d-net with a checked table of the same valence
     /// ([`RuleTable::new`] or [`RuleTable::builtin`]); [`Error::TableShape`]
     /// when the valences differ, [`Error::NonFinite`] as in [`EgSubdivision::new`].
     pub fn with_table(net: DNet<R>, table: RuleTable<'t>) -> Result<Self, Error> {
+        let mut sub = Self::empty();
+        sub.reset_with_table(&net, table)?;
+        Ok(sub)
+    }
+
+    /// [`EgSubdivision::new`] in place: restarts from a copy of `net` at level
+    /// 0, whatever `self` held. Errors as `new`; every check runs before
+    /// anything is written, so on error `self` is unchanged. Stack use is a
+    /// few words.
+    pub fn reset(&mut self, net: &DNet<R>) -> Result<(), Error> {
+        check_valence(net.valence())?;
+        if !net.is_finite() {
+            return Err(Error::NonFinite);
+        }
+        let table = builtin_rule(net.valence())?;
+        self.install(table, |cur| cur.assign(net));
+        Ok(())
+    }
+
+    /// [`EgSubdivision::with_table`] in place; on error `self` is unchanged.
+    pub fn reset_with_table(&mut self, net: &DNet<R>, table: RuleTable<'t>) -> Result<(), Error> {
+        check_valence(net.valence())?;
         if !net.is_finite() {
             return Err(Error::NonFinite);
         }
         if table.valence() != net.valence() {
             return Err(Error::TableShape);
         }
-        Ok(Self::start(net, Some(table)))
+        self.install(Some(table), |cur| cur.assign(net));
+        Ok(())
     }
 
-    fn start(net: DNet<R>, table: Option<RuleTable<'t>>) -> Self {
-        EgSubdivision {
-            table,
-            prev: net.clone(),
-            cur: net,
-            level: 0,
+    /// [`EgSubdivision::from_cnet`] in place: restarts from the c-net's
+    /// degree-raised d-net (§3, `c0` by (3)), written straight into `self`.
+    /// Errors as `from_cnet` ([`Error::NonFinite`] when the raised net would
+    /// overflow: checked by computing it once without storing it, so on error
+    /// `self` is unchanged; [`Error::ValenceTooSmall`] for an empty c-net).
+    pub fn reset_from_cnet(&mut self, net: &CNet<R>) -> Result<(), Error> {
+        check_valence(net.valence())?;
+        if !net.raises_finite() {
+            return Err(Error::NonFinite);
+        }
+        let table = builtin_rule(net.valence())?;
+        self.install(table, |cur| net.raise_into(cur));
+        Ok(())
+    }
+
+    /// [`EgSubdivision::reset_from_cnet`] with a checked table of the c-net's
+    /// valence (as [`EgSubdivision::reset_with_table`]): how n = 6..10 starts
+    /// from a c-net without a d-net temporary.
+    pub fn reset_from_cnet_with_table(
+        &mut self,
+        net: &CNet<R>,
+        table: RuleTable<'t>,
+    ) -> Result<(), Error> {
+        check_valence(net.valence())?;
+        if !net.raises_finite() {
+            return Err(Error::NonFinite);
+        }
+        if table.valence() != net.valence() {
+            return Err(Error::TableShape);
+        }
+        self.install(Some(table), |cur| net.raise_into(cur));
+        Ok(())
+    }
+
+    /// Level 0 with `table` and the net `write` puts in the current slot.
+    fn install(&mut self, table: Option<RuleTable<'t>>, write: impl FnOnce(&mut DNet<R>)) {
+        self.table = table;
+        self.flip = false;
+        self.level = 0;
+        let [cur, prev] = &mut self.nets;
+        write(cur);
+        // No previous net at level 0 (the first step overwrites this one).
+        prev.c0 = cur.c0;
+        prev.sectors.clear();
+    }
+
+    /// `(current, previous)`.
+    #[inline]
+    fn pair(&self) -> (&DNet<R>, &DNet<R>) {
+        let [a, b] = &self.nets;
+        if self.flip {
+            (b, a)
+        } else {
+            (a, b)
         }
     }
 
@@ -83,18 +178,30 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     /// from a regular c-net this is exact bi-4 refinement of the degree-raised
     /// bicubic, and `c0` stays its value at the center.
     ///
-    /// [`Error::NonFinite`] if a coordinate overflows; the state is then unchanged.
+    /// The new net is written over the previous one (which becomes the
+    /// current one's predecessor), so no net-sized temporary is needed.
+    /// [`Error::NonFinite`] if a coordinate would overflow: decided before
+    /// anything is written (nets whose coordinates are all below `MAX/1024`
+    /// cannot overflow; others are first refined without storing), so the
+    /// state is then unchanged. [`Error::ValenceTooSmall`] on an
+    /// [`EgSubdivision::empty`] one.
     pub fn step(&mut self) -> Result<(), Error> {
+        let n = self.valence();
+        check_valence(n)?;
         let rule = match &self.table {
+            Some(t) if t.valence() != n => return Err(Error::TableShape),
             Some(t) => Rule::Eg(t),
             None => Rule::Regular,
         };
-        let mut next = self.cur.clone();
-        refine(&self.cur, rule, &mut next)?;
-        if !next.is_finite() {
+        let [a, b] = &mut self.nets;
+        let (cur, out) = if self.flip { (&*b, a) } else { (&*a, b) };
+        if !cannot_overflow(cur) && !refines_finite(cur, rule)? {
             return Err(Error::NonFinite);
         }
-        self.prev = core::mem::replace(&mut self.cur, next);
+        // Finite by the check above (the unit tests of `refine` pin both
+        // checks to the values `refine` stores).
+        refine(cur, rule, out)?;
+        self.flip = !self.flip;
         self.level = self.level.saturating_add(1);
         Ok(())
     }
@@ -102,22 +209,22 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     /// The current d-net.
     #[inline]
     pub fn net(&self) -> &DNet<R> {
-        &self.cur
+        self.pair().0
     }
     /// The d-net before the last step (`None` before the first step).
     #[inline]
     pub fn previous(&self) -> Option<&DNet<R>> {
-        (self.level > 0).then_some(&self.prev)
+        (self.level > 0).then_some(self.pair().1)
     }
     /// The limit point `c0` (§4), fixed for all steps.
     #[inline]
     pub fn c0(&self) -> Point3<R> {
-        self.cur.c0
+        self.net().c0
     }
     /// The valence.
     #[inline]
     pub fn valence(&self) -> usize {
-        self.cur.valence()
+        self.net().valence()
     }
     /// Steps taken.
     #[inline]
@@ -147,7 +254,8 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         if k >= self.ring_len() {
             return Err(Error::OutOfDomain);
         }
-        ring_patch(&self.prev, &self.cur, k)
+        let (cur, prev) = self.pair();
+        ring_patch(prev, cur, k)
     }
 
     /// Where patch `k` of the last step's ring lies: its sector and square in
