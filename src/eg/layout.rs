@@ -230,13 +230,53 @@ pub(crate) struct Fine {
     pub new_node: u8,
     /// Otherwise the regular refinement `REGULAR[I][J]` of the old d-net.
     pub reg: (u8, u8),
+    /// For a regular node in the patch's own sector frame (`ds = 0`): its
+    /// slot in [`OWN_REG`], else 255.
+    pub slot: u8,
 }
 
 const NO_FINE: Fine = Fine {
     ds: 0,
     new_node: 255,
     reg: (0, 0),
+    slot: 255,
 };
+
+/// Regular nodes of the ring in one sector's own frame: positions (new
+/// half-units) `x ∈ {4,5}, y ∈ 1..=5` (slots 0..10) and `x ∈ 0..=3,
+/// y ∈ {4,5}` (slots 10..18). The 3 patches of a sector read all of them.
+pub(crate) const OWN: usize = 18;
+
+/// The slot of own-frame position `(x, y)`, or 255.
+const fn own_slot(x: i32, y: i32) -> u8 {
+    if x >= 4 && x <= 5 && y >= 1 && y <= 5 {
+        ((x - 4) * 5 + (y - 1)) as u8
+    } else if x >= 0 && x <= 3 && y >= 4 && y <= 5 {
+        (10 + x * 2 + (y - 4)) as u8
+    } else {
+        255
+    }
+}
+
+const fn build_own() -> [(u8, u8); OWN] {
+    let mut t = [(0u8, 0u8); OWN];
+    let mut x = 0;
+    while x <= 5 {
+        let mut y = 1;
+        while y <= 5 {
+            let slot = own_slot(x, y);
+            if slot != 255 {
+                t[slot as usize] = ((5 - x) as u8, (5 - y) as u8);
+            }
+            y += 1;
+        }
+        x += 1;
+    }
+    t
+}
+
+/// `OWN_REG[slot]`: the regular index `(I, J)` of each own-frame slot.
+pub(crate) const OWN_REG: [(u8, u8); OWN] = build_own();
 
 /// Lower-left corner `(X₀, Y₀)` (new half-units) of the node block of ring
 /// patch `p`: 0 = `[½,1]×[0,½]`, 1 = `[0,½]×[½,1]`, 2 = `[½,1]²` (old units).
@@ -258,12 +298,14 @@ const fn build_ring() -> [[[Fine; 5]; 5]; 3] {
                         ds,
                         new_node: ((3 - x) + 4 * (3 - y)) as u8,
                         reg: (0, 0),
+                        slot: 255,
                     }
                 } else {
                     Fine {
                         ds,
                         new_node: 255,
                         reg: ((5 - x) as u8, (5 - y) as u8),
+                        slot: if ds == 0 { own_slot(x, y) } else { 255 },
                     }
                 };
                 b += 1;
@@ -309,7 +351,8 @@ pub(crate) const fn reads_center(terms: &[Term]) -> bool {
     false
 }
 
-// The outer new nodes (§5) and the ring's regular nodes never read the center:
+// The outer new nodes (§5) and the ring's regular nodes never read the center;
+// the ring's sector offsets stay within its windows (`ring::window`):
 const _: () = {
     let outer = [(0, 0), (1, 0), (2, 0), (3, 0), (0, 1), (0, 2)];
     let mut k = 0;
@@ -317,6 +360,7 @@ const _: () = {
         assert!(!reads_center(&REGULAR[outer[k].0 + 2][outer[k].1 + 2]));
         k += 1;
     }
+    let mut used = [false; OWN];
     let mut p = 0;
     while p < 3 {
         let mut a = 0;
@@ -325,13 +369,37 @@ const _: () = {
             while b < 5 {
                 let f = RING[p][a][b];
                 if f.new_node == 255 {
-                    assert!(!reads_center(&REGULAR[f.reg.0 as usize][f.reg.1 as usize]));
+                    let terms = &REGULAR[f.reg.0 as usize][f.reg.1 as usize];
+                    assert!(!reads_center(terms));
+                    // The ring reads old sectors s−2..=s+2 only (its window).
+                    let mut t = 0;
+                    while t < 9 {
+                        let ds = f.ds + terms[t].ds;
+                        assert!(ds >= -2 && ds <= 2);
+                        t += 1;
+                    }
+                    // Own-frame regular nodes have their cache slot.
+                    assert!((f.ds == 0) == (f.slot != 255));
+                    if f.slot != 255 {
+                        let (i, j) = OWN_REG[f.slot as usize];
+                        assert!(i == f.reg.0 && j == f.reg.1);
+                        used[f.slot as usize] = true;
+                    }
+                } else {
+                    // ... and new sectors s−1..=s+1.
+                    assert!(f.ds >= -1 && f.ds <= 1);
                 }
                 b += 1;
             }
             a += 1;
         }
         p += 1;
+    }
+    // The 3 patches of a sector read every own-frame slot.
+    let mut k = 0;
+    while k < OWN {
+        assert!(used[k]);
+        k += 1;
     }
     // Degree raising reads e only through stencil weights that sum to 144.
     let mut node = 0;

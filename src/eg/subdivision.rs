@@ -3,7 +3,7 @@
 
 use super::net::{check_valence, CNet, DNet};
 use super::refine::{cannot_overflow, refine, refines_finite, Rule};
-use super::ring::{ring_patch, PATCHES_PER_SECTOR};
+use super::ring::{ring_patch, OwnNodes, PATCHES_PER_SECTOR};
 use super::rule::RuleTable;
 use crate::bezier::BiquarticPatch;
 use crate::error::Error;
@@ -255,7 +255,7 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
             return Err(Error::OutOfDomain);
         }
         let (cur, prev) = self.pair();
-        ring_patch(prev, cur, k)
+        ring_patch(prev, cur, k, None)
     }
 
     /// Where patch `k` of the last step's ring lies: its sector and square in
@@ -283,7 +283,11 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
 
     /// All patches of the last step's ring, in index order.
     pub fn ring_patches(&self) -> EgRingPatches<'_, 't, R> {
-        EgRingPatches { sub: self, next: 0 }
+        EgRingPatches {
+            sub: self,
+            next: 0,
+            own: OwnNodes::empty(),
+        }
     }
 }
 
@@ -303,17 +307,25 @@ pub struct PatchDomain {
 }
 
 /// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
+/// Faster than [`EgSubdivision::ring_patch`] for every `k` (it shares the
+/// regular nodes of a sector's 3 patches, 18 points of scratch), same patches.
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EgRingPatches<'a, 't, R> {
     sub: &'a EgSubdivision<'t, R>,
     next: usize,
+    /// The current sector's own-frame regular nodes, shared by its 3 patches.
+    own: OwnNodes<R>,
 }
 
 impl<R: Real> Iterator for EgRingPatches<'_, '_, R> {
     type Item = BiquarticPatch<R>;
     fn next(&mut self) -> Option<Self::Item> {
-        let p = self.sub.ring_patch(self.next).ok()?;
+        if self.next >= self.sub.ring_len() {
+            return None;
+        }
+        let (cur, prev) = self.sub.pair();
+        let p = ring_patch(prev, cur, self.next, Some(&mut self.own)).ok()?;
         self.next = self.next.saturating_add(1);
         Some(p)
     }
