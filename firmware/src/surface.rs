@@ -53,6 +53,8 @@ mod common {
         };
         let _ = black_box(quartic.evaluate(u, v).map(|e| e.normal()));
         let _ = black_box(primitive_root(black_box(12)));
+        let mut empty = RootsOfUnity::<R, 96>::empty();
+        let _ = black_box(empty.reset(black_box(12)));
         if let Ok(mut ring) = RootsOfUnity::<R, 96>::new(black_box(6)) {
             let _ = black_box(ring.get(black_box(7)));
             let _ = black_box(ring.double());
@@ -98,6 +100,12 @@ mod c2ps {
             let _ = black_box((jet.limit(), jet.geometry()));
             black_box((net.valence(), net.level(), net.pole(), net.ring_len()));
         }
+        // In-place construction (statics): reset, then refine and read out.
+        let mut net = Net::<R>::empty();
+        let _ = black_box(net.reset(pole, links));
+        let _ = black_box(net.reset_flat(pole, black_box(3), flat));
+        let _ = black_box(net.step(black_box(FirstStep::Uniform)));
+        let _ = black_box(PoleJet::of(&net).geometry());
         if let Ok(region) = OuterRegion::new(pole, links) {
             let _ = black_box(region.patch(black_box(4)));
             for patch in region.patches() {
@@ -171,6 +179,24 @@ mod eg {
                 let _ = black_box(sub.ring_patch_domain(black_box(1)));
             }
         }
+        // In-place construction (statics): every reset path, then a step.
+        let mut cnet = CNet::<R>::empty();
+        let _ = black_box(cnet.reset(center, nodes));
+        let _ = black_box(cnet.reset_flat(center, flat));
+        let _ = black_box(cnet.reset_sectors(center, black_box(&[[[R::ZERO; 3]; 6]; 3])));
+        let mut dnet = DNet::<R>::empty();
+        dnet.reset_from_cnet(&cnet);
+        let _ = black_box(dnet.reset(nodes, c0));
+        let _ = black_box(dnet.reset_flat(flat, c0));
+        let _ = black_box(dnet.reset_sectors(black_box(&[[[R::ZERO; 3]; 12]; 3]), c0));
+        let mut sub = EgSubdivision::<R>::empty();
+        let _ = black_box(sub.reset_from_cnet(&cnet));
+        let _ = black_box(sub.reset(&dnet));
+        if let Some(t) = RuleTable::builtin(black_box(5)) {
+            let _ = black_box(sub.reset_with_table(&dnet, t));
+            let _ = black_box(sub.reset_from_cnet_with_table(&cnet, t));
+        }
+        let _ = black_box(sub.step());
         black_box(lambda_catmull_clark(black_box(7)));
     }
 }
