@@ -111,7 +111,8 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// error the net is unchanged. Stack use is a few words, whatever `CAP` is.
     pub fn reset<L: AsRef<[[R; 3]]>>(&mut self, pole: [R; 3], links: &[L]) -> Result<(), Error> {
         let n = validate(&pole, links)?;
-        RootsOfUnity::<R, CAP>::check(n)?;
+        // The first write: `RootsOfUnity::reset` checks `n` (capacity, table
+        // support) before touching anything, so an error leaves the net as it was.
         self.roots.reset(n)?;
         for (k, slot) in self.links.iter_mut().enumerate() {
             slot.clear();
