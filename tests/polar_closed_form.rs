@@ -1,7 +1,10 @@
+//! Spec C2PS.md §4, eq. (30): after m plain C²PS steps the pole is
+//! `p0 − μ^m/3 p3` and link 1 its closed form in p0..p5, to round-off.
+
 use capdiv::{FirstStep, Point3, PolarNet, PoleJet};
 
 #[test]
-fn smoke_closed_form() {
+fn pole_and_link1_match_eq30_closed_forms_for_8_levels() {
     let n = 5usize;
     let mut links = vec![];
     for i in 1..=5 {
