@@ -14,10 +14,13 @@
 
 extern crate alloc;
 
+pub mod chart;
 pub mod error;
 pub mod input;
+pub mod stencil;
 pub mod topology;
 
 pub use error::MeshError;
 pub use input::MeshInput;
+pub use stencil::StencilTable;
 pub use topology::Topology;

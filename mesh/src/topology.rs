@@ -207,11 +207,11 @@ impl Topology {
                 self.vertex_boundary[v] = true;
             }
         }
-        for v in 0..nv {
+        for (v, &out) in boundary_out.iter().enumerate() {
             if self.vertex_start[v] == NONE {
                 continue;
             }
-            if boundary_out[v] > 1 {
+            if out > 1 {
                 return Err(MeshError::NonManifoldVertex { vertex: v });
             }
             // Walk the fan counter-clockwise; it must visit every face once.

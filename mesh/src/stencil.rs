@@ -1,0 +1,85 @@
+//! `StencilTable`: points as fixed linear combinations of other points (the
+//! "stencil table" of OpenSubdiv's Far). Built once by the analysis (a
+//! refinement step, phantom points at boundaries), applied to new positions on
+//! every evaluation without allocating.
+
+use alloc::vec::Vec;
+use capdiv::{Point3, Real};
+
+/// Sparse rows `out[i] = Σ_k weights[k] · src[indices[k]]`, `k` over row `i`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StencilTable {
+    /// `offsets[i]..offsets[i+1]` index row `i`'s entries.
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f64>,
+}
+
+impl StencilTable {
+    /// An empty table (no rows).
+    pub fn new() -> Self {
+        StencilTable {
+            offsets: alloc::vec![0],
+            indices: Vec::new(),
+            weights: Vec::new(),
+        }
+    }
+
+    /// Appends a row; entries with the same index are kept separately (their
+    /// weights add up when applied). Returns the row's index.
+    pub fn push_row(&mut self, entries: impl IntoIterator<Item = (u32, f64)>) -> u32 {
+        if self.offsets.is_empty() {
+            self.offsets.push(0);
+        }
+        for (i, w) in entries {
+            self.indices.push(i);
+            self.weights.push(w);
+        }
+        self.offsets.push(self.indices.len() as u32);
+        (self.offsets.len() - 2) as u32
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// `true` without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Row `i` as `(index, weight)` pairs.
+    pub fn row(&self, i: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        self.indices[a..b]
+            .iter()
+            .copied()
+            .zip(self.weights[a..b].iter().copied())
+    }
+
+    /// Total number of entries (the cost of one application).
+    pub fn entries(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Largest source index used plus one (0 for an empty table).
+    pub fn source_len(&self) -> usize {
+        self.indices.iter().map(|&i| i as usize + 1).max().unwrap_or(0)
+    }
+
+    /// Applies every row to `src`, writing `out[i]`. `out` must have
+    /// [`Self::len`] entries and `src` at least [`Self::source_len`]; the
+    /// analysis guarantees both (rows past `out`'s end are skipped).
+    pub fn apply<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
+        for (i, o) in out.iter_mut().enumerate().take(self.len()) {
+            let mut acc = Point3::ZERO;
+            for (idx, w) in self.row(i) {
+                if let Some(p) = src.get(idx as usize) {
+                    acc += *p * R::from_f64(w);
+                }
+            }
+            *o = acc;
+        }
+    }
+}
