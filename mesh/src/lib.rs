@@ -16,6 +16,7 @@ extern crate alloc;
 
 pub mod chart;
 pub mod error;
+pub mod grid;
 pub mod input;
 pub mod stencil;
 pub mod topology;

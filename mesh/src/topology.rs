@@ -65,11 +65,26 @@ impl Topology {
         {
             return Err(MeshError::NonFinite { vertex });
         }
+        Self::from_faces(nv, &mesh.faces)
+    }
+
+    /// [`Self::new`] without positions: `nv` vertices and the face lists
+    /// (every check but finiteness). Used for refined meshes.
+    pub fn from_faces(nv: usize, faces: &[Vec<u32>]) -> Result<Self, MeshError> {
+        let nf = faces.len();
+        if nf == 0 || nv == 0 {
+            return Err(MeshError::Empty);
+        }
+        let corners: usize = faces.iter().map(|f| f.len()).sum();
+        let limit = (i32::MAX as usize) - 1;
+        if nv > limit || nf > limit || corners > limit {
+            return Err(MeshError::TooLarge);
+        }
         let mut face_start = Vec::with_capacity(nf + 1);
         let mut corner_vertex = Vec::with_capacity(corners);
         let mut corner_face = Vec::with_capacity(corners);
         face_start.push(0u32);
-        for (f, face) in mesh.faces.iter().enumerate() {
+        for (f, face) in faces.iter().enumerate() {
             if face.len() < 3 {
                 return Err(MeshError::FaceTooSmall {
                     face: f,

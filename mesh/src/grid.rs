@@ -1,0 +1,244 @@
+//! Regular neighbourhoods: the 3×3 vertices around a 4-valent vertex, and the
+//! 4×4 B-spline control grid of a regular face, with phantom points at the
+//! boundary (mirror `2b − i`, Catmull-Clark's edge-only boundary).
+
+use crate::topology::{Topology, NONE};
+use alloc::vec::Vec;
+
+/// A grid entry: a linear combination of mesh vertices (a vertex itself has
+/// one term of weight 1; a phantom point two or four).
+pub type Combo = Vec<(u32, f64)>;
+
+/// The vertices around `origin(h)` in local coordinates `(a, b) ∈ {−1,0,1}²`
+/// (entry `[a+1][b+1]`): `+x` along `h`, `+y` along the next edge
+/// counter-clockwise. `None` entries lie beyond the boundary.
+///
+/// Returns `None` unless the vertex is *regular*: every face around it is a
+/// quad, and it has 4 faces (interior) or at most 2 (boundary: an edge vertex
+/// of valence 3, or a corner of valence 2); also `None` if the faces do not
+/// fit one grid (possible only on tiny closed meshes).
+pub fn corner_grid(t: &Topology, h: u32) -> Option<[[Option<u32>; 3]; 3]> {
+    let v = t.origin(h) as usize;
+    let faces = t.vertex_face_count(v);
+    if t.is_boundary(v) {
+        if faces > 2 {
+            return None;
+        }
+    } else if faces != 4 {
+        return None;
+    }
+    let mut g = [[None; 3]; 3];
+    put(&mut g, (0, 0), v as u32)?;
+    // Counter-clockwise from h, then (at a boundary) clockwise.
+    let mut e = h;
+    let mut d = (1, 0);
+    for _ in 0..4 {
+        cell(t, e, d, &mut g)?;
+        e = t.rotate_ccw(e);
+        d = rot90(d);
+        if e == NONE || e == h {
+            break;
+        }
+    }
+    if e == NONE {
+        let mut e = t.rotate_cw(h);
+        let mut d = (0, -1);
+        while e != NONE && e != h {
+            cell(t, e, d, &mut g)?;
+            e = t.rotate_cw(e);
+            d = rot90(rot90(rot90(d)));
+        }
+    }
+    Some(g)
+}
+
+/// Counter-clockwise quarter turn.
+fn rot90((a, b): (i32, i32)) -> (i32, i32) {
+    (-b, a)
+}
+
+/// Writes the quad to the left of `e` (leaving the centre in direction `d`)
+/// into the local grid.
+fn cell(t: &Topology, e: u32, d: (i32, i32), g: &mut [[Option<u32>; 3]; 3]) -> Option<()> {
+    if t.face_len(t.face_of(e) as usize) != 4 {
+        return None;
+    }
+    let r = rot90(d);
+    let n1 = t.next(e);
+    let n2 = t.next(n1);
+    put(g, d, t.dest(e))?;
+    put(g, (d.0 + r.0, d.1 + r.1), t.dest(n1))?;
+    put(g, r, t.dest(n2))
+}
+
+/// Sets `g` at local `(a, b)`; `None` on a conflict.
+fn put(g: &mut [[Option<u32>; 3]; 3], (a, b): (i32, i32), v: u32) -> Option<()> {
+    let slot = g.get_mut((a + 1) as usize)?.get_mut((b + 1) as usize)?;
+    match *slot {
+        Some(w) if w != v => None,
+        _ => {
+            *slot = Some(v);
+            Some(())
+        }
+    }
+}
+
+/// The 4×4 uniform bicubic B-spline control grid of quad face `f`, `[i][j]`
+/// with `i` along the face's `u` (first → second vertex) and `j` along `v`
+/// (first → last vertex); the face's corners sit at (1,1), (2,1), (2,2),
+/// (1,2). Points beyond a boundary are phantom points: `2b − i` across an
+/// edge, mirrored twice at a corner.
+///
+/// `None` unless the face is regular: a quad whose four corners are regular
+/// (see [`corner_grid`]) and whose neighbourhood fits one grid.
+pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
+    if t.face_len(f) != 4 {
+        return None;
+    }
+    let mut grid: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
+    const CORNER: [(i32, i32); 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
+    for (k, &(ci, cj)) in CORNER.iter().enumerate() {
+        let local = corner_grid(t, t.face_half_edge(f, k))?;
+        for (a, row) in local.iter().enumerate() {
+            for (b, entry) in row.iter().enumerate() {
+                let Some(v) = *entry else { continue };
+                let (a, b) = (a as i32 - 1, b as i32 - 1);
+                // Local axes of corner k in the face's (u, v): +x runs along
+                // the face edge k → k+1, +y along the next edge ccw.
+                let (di, dj) = match k {
+                    0 => (a, b),
+                    1 => (-b, a),
+                    2 => (-a, -b),
+                    _ => (b, -a),
+                };
+                let (i, j) = ((ci + di) as usize, (cj + dj) as usize);
+                let slot = &mut grid[i][j];
+                match *slot {
+                    Some(w) if w != v => return None,
+                    _ => *slot = Some(v),
+                }
+            }
+        }
+    }
+    let mut out: [[Option<Combo>; 4]; 4] = Default::default();
+    for i in 0..4 {
+        for j in 0..4 {
+            out[i][j] = grid[i][j].map(|v| alloc::vec![(v, 1.0)]);
+        }
+    }
+    mirror(&mut out)?;
+    Some(out.map(|row| row.map(|c| c.unwrap_or_default())))
+}
+
+/// Fills missing border entries by mirroring (`2·near − far` along a row or
+/// column), repeatedly, so that corners are mirrored twice. `None` if some
+/// entry cannot be filled.
+fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
+    loop {
+        let mut changed = false;
+        let mut missing = false;
+        for i in 0..4 {
+            for j in 0..4 {
+                if g[i][j].is_some() {
+                    continue;
+                }
+                let pairs = [
+                    (i == 0).then_some(((1, j), (2, j))),
+                    (i == 3).then_some(((2, j), (1, j))),
+                    (j == 0).then_some(((i, 1), (i, 2))),
+                    (j == 3).then_some(((i, 2), (i, 1))),
+                ];
+                let mut filled = None;
+                for ((ni, nj), (fi, fj)) in pairs.into_iter().flatten() {
+                    if let (Some(near), Some(far)) = (&g[ni][nj], &g[fi][fj]) {
+                        let mut c: Combo = near.iter().map(|&(v, w)| (v, 2.0 * w)).collect();
+                        c.extend(far.iter().map(|&(v, w)| (v, -w)));
+                        filled = Some(c);
+                        break;
+                    }
+                }
+                match filled {
+                    Some(c) => {
+                        g[i][j] = Some(c);
+                        changed = true;
+                    }
+                    None => missing = true,
+                }
+            }
+        }
+        if !missing {
+            return Some(());
+        }
+        if !changed {
+            return None;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::MeshInput;
+
+    /// An `nu × nv` quad grid of vertices `(i, j) ↦ i + (nu+1)·j`.
+    fn grid_mesh(nu: usize, nv: usize) -> MeshInput {
+        let w = nu + 1;
+        let verts = (0..=nv)
+            .flat_map(|j| (0..=nu).map(move |i| [i as f64, j as f64, 0.0]))
+            .collect();
+        let mut faces = Vec::new();
+        for j in 0..nv {
+            for i in 0..nu {
+                let v = |a: usize, b: usize| (a + w * b) as u32;
+                faces.push(alloc::vec![v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+        MeshInput::new(verts, faces)
+    }
+
+    #[test]
+    fn interior_face_grid_is_the_4x4_block() {
+        let m = grid_mesh(5, 5);
+        let t = Topology::new(&m).unwrap();
+        // Face (2, 2): vertices (2..=3, 2..=3); grid (1..=4, 1..=4).
+        let f = 2 + 5 * 2;
+        let g = face_grid(&t, f).unwrap();
+        for (i, row) in g.iter().enumerate() {
+            for (j, c) in row.iter().enumerate() {
+                assert_eq!(c, &alloc::vec![((1 + i + 6 * (1 + j)) as u32, 1.0)]);
+            }
+        }
+    }
+
+    #[test]
+    fn corner_face_grid_mirrors_twice() {
+        let m = grid_mesh(3, 3);
+        let t = Topology::new(&m).unwrap();
+        let g = face_grid(&t, 0).unwrap();
+        // Evaluate combos on the positions: phantoms continue the grid
+        // linearly, so entry (i, j) sits at (i − 1, j − 1).
+        for (i, row) in g.iter().enumerate() {
+            for (j, c) in row.iter().enumerate() {
+                let p = c.iter().fold([0.0; 2], |acc, &(v, w)| {
+                    let q = m.vertices[v as usize];
+                    [acc[0] + w * q[0], acc[1] + w * q[1]]
+                });
+                assert_eq!(p, [i as f64 - 1.0, j as f64 - 1.0]);
+            }
+        }
+    }
+
+    #[test]
+    fn rotated_face_orders_its_grid_from_its_first_vertex() {
+        let mut m = grid_mesh(4, 4);
+        let f = 1 + 4;
+        m.faces[f].rotate_left(1); // first vertex is now the old second one
+        let t = Topology::new(&m).unwrap();
+        let g = face_grid(&t, f).unwrap();
+        // Grid (1,1) is the face's first vertex, (2,1) its second, (1,2) its last.
+        assert_eq!(g[1][1][0].0, m.faces[f][0]);
+        assert_eq!(g[2][1][0].0, m.faces[f][1]);
+        assert_eq!(g[2][2][0].0, m.faces[f][2]);
+        assert_eq!(g[1][2][0].0, m.faces[f][3]);
+    }
+}
