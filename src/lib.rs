@@ -6,6 +6,8 @@
 //!   polar vertices; the valence doubles every step.
 //! - [`eg`]: Evolving Guide subdivision (spec `EG.md`) — bi-4 caps around
 //!   extraordinary Catmull-Clark nodes.
+//! - [`cc`]: Catmull-Clark caps in caller-provided storage — the baseline EG
+//!   is compared with, for any valence ≥ 3.
 //!
 //! Everything is generic over [`Real`] (`f32`, `f64`), stored in fixed capacity
 //! (const generics, `heapless`), and reports bad input as an [`Error`] without
@@ -15,6 +17,7 @@
 #![warn(missing_docs)]
 
 pub mod bezier;
+pub mod cc;
 pub mod eg;
 pub mod error;
 pub mod point;
@@ -23,6 +26,7 @@ pub mod real;
 pub mod trig;
 
 pub use bezier::{BicubicPatch, BiquarticPatch, PatchPoint, TensorPatch};
+pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;
 pub use point::Point3;

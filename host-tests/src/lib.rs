@@ -12,11 +12,14 @@
 //! - [`ring`]: the surface ring of a configuration (spec §5).
 //! - [`jet`]: eigencoefficients, closed forms, Taylor quadratic, curvatures (spec §4).
 //! - [`eg`]: the EG subdivision matrix straight from spec `EG.md` §5–§7.
+//! - [`catmull_clark`]: a literal Catmull-Clark step on a polygon mesh, the
+//!   dense matrix of a c-net, its limit weights, bicubic B-spline evaluation.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod bezier;
 pub mod c2ps;
+pub mod catmull_clark;
 pub mod eg;
 pub mod eigen;
 pub mod jet;
