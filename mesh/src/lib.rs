@@ -19,6 +19,7 @@ pub mod chart;
 pub mod error;
 pub mod grid;
 pub mod input;
+pub mod obj;
 pub mod stencil;
 pub mod topology;
 
