@@ -917,7 +917,7 @@ mod tests {
         // of the cap rises between rim and stem (concave), the stem narrows
         // then bulges at the foot.
         let ring = |k: usize| m.vertices[1 + 12 * k];
-        assert!(ring(8)[2] < ring(9)[2] && ring(9)[2] > ring(10)[2]);
+        assert!(ring(7)[2] < ring(8)[2] && ring(8)[2] > ring(9)[2]);
         assert!(ring(11)[0] < ring(13)[0] && ring(13)[0] > ring(14)[0]);
     }
 
