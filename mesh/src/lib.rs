@@ -20,6 +20,7 @@ pub mod error;
 pub mod grid;
 pub mod input;
 pub mod obj;
+pub mod refine;
 pub mod samples;
 pub mod stencil;
 pub mod topology;

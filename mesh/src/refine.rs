@@ -1,0 +1,334 @@
+//! The combined refinement step: one global Catmull-Clark (CC) step, except at
+//! polar vertices, where the C²PS step (spec C2PS.md §2, first-step variant
+//! "Uniform") gives the new pole, new link 1 and new link 2. New links ≥ 3 of
+//! C²PS are plain CC (spec §2: uniform bi-3 refinement), so they come out of
+//! the CC rules unchanged.
+//!
+//! Topology is computed once; every refined vertex is a fixed linear
+//! combination of old vertices (a [`StencilTable`] row), so positions are
+//! re-evaluated cheaply when the input vertices move.
+//!
+//! Numbering of the refined vertices: vertex point of old vertex `v` is `v`
+//! (`0..V`), face point of old face `f` is `V + f`, edge point of undirected
+//! old edge `e` is `V + F + e`, edges numbered in the order they are first met
+//! walking the half-edges `0, 1, 2, …`.
+//!
+//! Faces: old face `f` with `k` corners gives `k` sub-quads, grouped per old
+//! face in old-face order, corners in order; the sub-quad at corner `c` is
+//! (vertex point of `c`, edge point of `c→c+1`, face point, edge point of
+//! `c−1→c`). At a seed's pole corner, that sub-quad is replaced by two
+//! triangles (new pole, edge point of pole→link1\[j\], face point) and (new
+//! pole, face point, edge point of pole→link1\[j+1\]).
+//!
+//! CC rules (positions over old vertices):
+//! - face point: centroid;
+//! - interior edge point `(v + w + fp₁ + fp₂)/4`, boundary edge point `(v + w)/2`;
+//! - interior vertex point of valence `n`:
+//!   `(n−2)/n · v + 1/n² Σ neighbours + 1/n² Σ face points`;
+//!   boundary vertex with two or more faces `(6v + a + b)/8` (`a`, `b` its
+//!   boundary neighbours); boundary vertex with one face (a corner) `v`;
+//!   a vertex no face uses: `v`.
+
+use crate::chart::{Affine, FaceChart};
+use crate::stencil::StencilTable;
+use crate::topology::{Topology, NONE};
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// A polar vertex that the step refines by C²PS: pole, its 1-link and 2-link,
+/// counter-clockwise. `triangles[j]` is the face (pole, link1\[j\],
+/// link1\[j+1\]); `quads[j]` is the quad (link1\[j+1\], link1\[j\], link2\[j\],
+/// link2\[j+1\]) (given as face indices; vertex order within the face may
+/// start anywhere but is counter-clockwise).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PolarSeed {
+    /// The pole `q00`.
+    pub pole: u32,
+    /// The 1-link, counter-clockwise (`n ≥ 3` vertices).
+    pub link1: Vec<u32>,
+    /// The 2-link; `link2[j]` lies across `quads[j]` from `link1[j]`.
+    pub link2: Vec<u32>,
+    /// `triangles[j]`: the face (pole, link1\[j\], link1\[j+1\]).
+    pub triangles: Vec<u32>,
+    /// `quads[j]`: the face (link1\[j+1\], link1\[j\], link2\[j\], link2\[j+1\]).
+    pub quads: Vec<u32>,
+}
+
+/// The result of one refinement step.
+#[derive(Clone, Debug)]
+pub struct Refined {
+    /// Number of refined vertices (`V + F + E` of the old mesh).
+    pub num_vertices: usize,
+    /// Faces of the refined mesh, counter-clockwise (same orientation as the input).
+    pub faces: Vec<Vec<u32>>,
+    /// Refined vertex i = Σ w · old vertex (rows in refined vertex order).
+    pub stencils: StencilTable,
+    /// Per refined face: where it lies in the INPUT mesh (old charts composed).
+    pub charts: Vec<FaceChart>,
+    /// Per refined face: the old face it came from.
+    pub parent: Vec<u32>,
+    /// Refined vertex index of each seed's new pole (same order as `poles`).
+    pub poles: Vec<u32>,
+}
+
+/// A stencil row under construction: `(old vertex, weight)`, one entry per
+/// vertex.
+type Row = Vec<(u32, f64)>;
+
+/// Adds `w · old vertex i` to `row`.
+fn add(row: &mut Row, i: u32, w: f64) {
+    if let Some(e) = row.iter_mut().find(|e| e.0 == i) {
+        e.1 += w;
+    } else {
+        row.push((i, w));
+    }
+}
+
+/// Adds `w · row` to `acc`.
+fn add_row(acc: &mut Row, row: &[(u32, f64)], w: f64) {
+    for &(i, x) in row {
+        add(acc, i, w * x);
+    }
+}
+
+/// `cos(2π t)`.
+fn c(t: f64) -> f64 {
+    libm::cos(2.0 * core::f64::consts::PI * t)
+}
+
+/// One refinement step of `topo`: Catmull-Clark everywhere, C²PS (first-step
+/// variant "Uniform") for the pole, link 1 and link 2 of every seed in
+/// `poles`. `charts[f]` is where old face `f` lies in the input mesh.
+///
+/// Seeds are applied in order; a vertex shared by two seeds' rings takes the
+/// later seed's rule (the analysis never produces such seeds).
+///
+/// # Panics
+/// If `charts` does not have one entry per face, or a seed does not describe
+/// its faces as documented on [`PolarSeed`] (a caller's logic error).
+pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Refined {
+    let nv = topo.num_vertices();
+    let nf = topo.num_faces();
+    let nh = topo.num_half_edges();
+    assert_eq!(charts.len(), nf, "refine: one chart per face");
+
+    // Undirected edges, in the order first met along the half-edges.
+    let mut edge = vec![NONE; nh];
+    let mut edge_he: Vec<u32> = Vec::new();
+    for h in 0..nh {
+        if edge[h] == NONE {
+            let e = edge_he.len() as u32;
+            edge[h] = e;
+            let t = topo.twin(h as u32);
+            if t != NONE {
+                edge[t as usize] = e;
+            }
+            edge_he.push(h as u32);
+        }
+    }
+    let ne = edge_he.len();
+    let fp_base = nv as u32;
+    let ep_base = (nv + nf) as u32;
+    let total = nv + nf + ne;
+
+    // Face points.
+    let face_rows: Vec<Row> = (0..nf)
+        .map(|f| {
+            let vs = topo.face(f);
+            let w = 1.0 / vs.len() as f64;
+            vs.iter().map(|&v| (v, w)).collect()
+        })
+        .collect();
+
+    let mut rows: Vec<Row> = Vec::with_capacity(total);
+    // Vertex points.
+    for v in 0..nv {
+        let mut row = Row::new();
+        let first = topo.vertex_first(v);
+        if first == NONE || (topo.is_boundary(v) && topo.vertex_face_count(v) == 1) {
+            row.push((v as u32, 1.0));
+        } else if topo.is_boundary(v) {
+            // `first` runs along the boundary to `a`; the last outgoing
+            // half-edge's face comes in along the boundary from `b`.
+            let a = topo.dest(first);
+            let last = topo.outgoing(v).last().unwrap_or(first);
+            let b = topo.origin(topo.prev(last));
+            row.push((v as u32, 0.75));
+            add(&mut row, a, 0.125);
+            add(&mut row, b, 0.125);
+        } else {
+            let n = topo.valence(v) as f64;
+            let nn = 1.0 / (n * n);
+            row.push((v as u32, (n - 2.0) / n));
+            for h in topo.outgoing(v) {
+                add(&mut row, topo.dest(h), nn);
+                add_row(&mut row, &face_rows[topo.face_of(h) as usize], nn);
+            }
+        }
+        rows.push(row);
+    }
+    rows.extend(face_rows.iter().cloned());
+    // Edge points.
+    for &h in &edge_he {
+        let mut row = Row::new();
+        let t = topo.twin(h);
+        let (v, w) = (topo.origin(h), topo.dest(h));
+        if t == NONE {
+            row.push((v, 0.5));
+            add(&mut row, w, 0.5);
+        } else {
+            row.push((v, 0.25));
+            add(&mut row, w, 0.25);
+            add_row(&mut row, &face_rows[topo.face_of(h) as usize], 0.25);
+            add_row(&mut row, &face_rows[topo.face_of(t) as usize], 0.25);
+        }
+        rows.push(row);
+    }
+
+    // C²PS at the seeds. Per face: the corner holding a seed's pole (or NONE).
+    let mut pole_corner = vec![NONE; nf];
+    let mut new_poles = Vec::with_capacity(poles.len());
+    for seed in poles {
+        let n = seed.link1.len();
+        assert!(
+            n >= 3 && seed.link2.len() == n && seed.triangles.len() == n && seed.quads.len() == n,
+            "refine: PolarSeed of pole {} has inconsistent lengths",
+            seed.pole
+        );
+        // h[j]: the half-edge pole → link1[j] in triangles[j].
+        let spokes: Vec<u32> = (0..n)
+            .map(|j| {
+                let f = seed.triangles[j] as usize;
+                let vs = topo.face(f);
+                let k = vs.iter().position(|&x| x == seed.pole);
+                let ok = vs.len() == 3
+                    && k.is_some_and(|k| {
+                        vs[(k + 1) % 3] == seed.link1[j]
+                            && vs[(k + 2) % 3] == seed.link1[(j + 1) % n]
+                    });
+                assert!(
+                    ok,
+                    "refine: face {f} is not triangle {j} of pole {}",
+                    seed.pole
+                );
+                let k = k.unwrap_or(0);
+                pole_corner[f] = k as u32;
+                topo.face_half_edge(f, k)
+            })
+            .collect();
+        for j in 0..n {
+            let f = seed.quads[j] as usize;
+            let vs = topo.face(f);
+            let want = [
+                seed.link1[(j + 1) % n],
+                seed.link1[j],
+                seed.link2[j],
+                seed.link2[(j + 1) % n],
+            ];
+            let ok = vs.len() == 4 && (0..4).any(|s| (0..4).all(|i| vs[(s + i) % 4] == want[i]));
+            assert!(ok, "refine: face {f} is not quad {j} of pole {}", seed.pole);
+        }
+        let (q00, q1, q2) = (seed.pole, &seed.link1, &seed.link2);
+        let nf64 = n as f64;
+        // (1): new pole = 3/4 q00 + 1/4 A.
+        let mut row = vec![(q00, 0.75)];
+        for &v in q1 {
+            add(&mut row, v, 0.25 / nf64);
+        }
+        rows[q00 as usize] = row;
+        new_poles.push(q00);
+        // Periodic cubic refinement of a link as weights: ũ[j'].
+        let tilde = |u: &[u32], jp: usize, w: f64, row: &mut Row| {
+            let j = jp / 2;
+            if jp.is_multiple_of(2) {
+                add(row, u[(j + n - 1) % n], w / 8.0);
+                add(row, u[j], 6.0 * w / 8.0);
+                add(row, u[(j + 1) % n], w / 8.0);
+            } else {
+                add(row, u[j], w / 2.0);
+                add(row, u[(j + 1) % n], w / 2.0);
+            }
+        };
+        for jp in 0..2 * n {
+            let j = jp / 2;
+            let h = spokes[j];
+            // (2): new link 1.
+            let tau = jp as f64 / (2.0 * nf64);
+            let mut row = vec![(q00, 0.5)];
+            for (hh, &v) in q1.iter().enumerate() {
+                let d = hh as f64 / nf64 - tau;
+                add(&mut row, v, (0.5 + c(d) + 0.5 * c(2.0 * d)) / nf64);
+            }
+            let id = if jp.is_multiple_of(2) {
+                ep_base + edge[h as usize]
+            } else {
+                fp_base + seed.triangles[j]
+            };
+            rows[id as usize] = row;
+            // First-step variant: new link 2 = (q00 + 6 q̃1 + q̃2)/8.
+            let mut row = vec![(q00, 0.125)];
+            tilde(q1, jp, 0.75, &mut row);
+            tilde(q2, jp, 0.125, &mut row);
+            let id = if jp.is_multiple_of(2) {
+                q1[j]
+            } else {
+                ep_base + edge[topo.next(h) as usize]
+            };
+            rows[id as usize] = row;
+        }
+    }
+
+    let mut stencils = StencilTable::new();
+    for row in rows {
+        stencils.push_row(row);
+    }
+
+    // Faces, charts, parents.
+    let mut faces = Vec::with_capacity(nh + poles.len() * 3);
+    let mut out_charts = Vec::with_capacity(faces.capacity());
+    let mut parent = Vec::with_capacity(faces.capacity());
+    for f in 0..nf {
+        let k = topo.face_len(f);
+        let fp = fp_base + f as u32;
+        let chart = charts[f];
+        for corner in 0..k {
+            let h = topo.face_half_edge(f, corner);
+            let vp = topo.origin(h);
+            let e_next = ep_base + edge[h as usize];
+            let e_prev = ep_base + edge[topo.prev(h) as usize];
+            if pole_corner[f] == corner as u32 {
+                faces.push(vec![vp, e_next, fp]);
+                faces.push(vec![vp, fp, e_prev]);
+                for _ in 0..2 {
+                    out_charts.push(FaceChart::input(chart.face));
+                    parent.push(f as u32);
+                }
+                continue;
+            }
+            faces.push(vec![vp, e_next, fp, e_prev]);
+            out_charts.push(if k == 4 || chart.corner.is_some() {
+                FaceChart {
+                    face: chart.face,
+                    corner: chart.corner,
+                    map: chart.map.compose(&Affine::quadrant(corner)),
+                }
+            } else {
+                FaceChart {
+                    face: chart.face,
+                    corner: Some(corner as u8),
+                    map: Affine::IDENTITY,
+                }
+            });
+            parent.push(f as u32);
+        }
+    }
+
+    Refined {
+        num_vertices: total,
+        faces,
+        stencils,
+        charts: out_charts,
+        parent,
+        poles: new_poles,
+    }
+}
