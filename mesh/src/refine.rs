@@ -332,3 +332,110 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
         poles: new_poles,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use alloc::vec;
+
+    fn charts(nf: u32) -> Vec<FaceChart> {
+        (0..nf).map(FaceChart::input).collect()
+    }
+
+    #[test]
+    fn edges_are_numbered_as_first_met_along_the_half_edges() {
+        // Half-edges: 0→1 (e0), 1→2 (e1), 2→0 (e2), 2→1 (= e1), 1→3 (e3), 3→2 (e4).
+        let faces = vec![vec![0, 1, 2], vec![2, 1, 3]];
+        let t = Topology::from_faces(4, &faces).unwrap();
+        let r = refine(&t, &charts(2), &[]);
+        assert_eq!(r.num_vertices, 4 + 2 + 5);
+        let e = |i: u32| 6 + i;
+        assert_eq!(
+            r.faces,
+            vec![
+                vec![0, e(0), 4, e(2)],
+                vec![1, e(1), 4, e(0)],
+                vec![2, e(2), 4, e(1)],
+                vec![2, e(1), 5, e(4)],
+                vec![1, e(3), 5, e(1)],
+                vec![3, e(4), 5, e(3)],
+            ]
+        );
+        assert_eq!(r.parent, vec![0, 0, 0, 1, 1, 1]);
+        // Interior edge 1–2: (v + w)/4 + both centroids/4.
+        let row: Vec<(u32, f64)> = r.stencils.row(e(1) as usize).collect();
+        let w = |i: u32| row.iter().filter(|x| x.0 == i).map(|x| x.1).sum::<f64>();
+        let third = 1.0 / 12.0;
+        assert!((w(1) - (0.25 + 2.0 * third)).abs() < 1e-15);
+        assert!((w(2) - (0.25 + 2.0 * third)).abs() < 1e-15);
+        assert!((w(0) - third).abs() < 1e-15 && (w(3) - third).abs() < 1e-15);
+        // A one-face corner keeps its position.
+        assert_eq!(r.stencils.row(0).collect::<Vec<_>>(), vec![(0, 1.0)]);
+    }
+
+    /// A closed fan of valence `n` around vertex 0 with one ring of quads and
+    /// a second pole closing it: vertices 0, link1 1..=n, link2 n+1..=2n, 2n+1.
+    fn bipyramid_seed(n: u32) -> (Topology, PolarSeed) {
+        let l1 = |j: u32| 1 + j % n;
+        let l2 = |j: u32| 1 + n + j % n;
+        let mut faces = Vec::new();
+        let mut seed = PolarSeed {
+            pole: 0,
+            link1: (0..n).map(l1).collect(),
+            link2: (0..n).map(l2).collect(),
+            triangles: Vec::new(),
+            quads: Vec::new(),
+        };
+        for j in 0..n {
+            seed.triangles.push(faces.len() as u32);
+            faces.push(vec![0, l1(j), l1(j + 1)]);
+        }
+        for j in 0..n {
+            seed.quads.push(faces.len() as u32);
+            faces.push(vec![l1(j + 1), l1(j), l2(j), l2(j + 1)]);
+        }
+        for j in 0..n {
+            faces.push(vec![2 * n + 1, l2(j + 1), l2(j)]);
+        }
+        let t = Topology::from_faces(2 * n as usize + 2, &faces).unwrap();
+        (t, seed)
+    }
+
+    #[test]
+    fn pole_row_is_three_quarters_pole_plus_quarter_link_mean() {
+        for n in 3..9 {
+            let (t, seed) = bipyramid_seed(n);
+            let r = refine(&t, &charts(t.num_faces() as u32), &[seed]);
+            assert_eq!(r.poles, vec![0]);
+            let row: Vec<(u32, f64)> = r.stencils.row(0).collect();
+            assert_eq!(row.len(), n as usize + 1);
+            for (i, w) in row {
+                let want = if i == 0 { 0.75 } else { 0.25 / n as f64 };
+                assert!((w - want).abs() < 1e-15);
+            }
+            for i in 0..r.stencils.len() {
+                let s: f64 = r.stencils.row(i).map(|e| e.1).sum();
+                assert!((s - 1.0).abs() < 1e-13, "n={n} row {i}");
+            }
+            // Each fan triangle (pole at corner 0): the two pole triangles,
+            // then the sub-quads at its other two corners.
+            for j in 0..n as usize {
+                let sizes: Vec<usize> = r.faces[4 * j..4 * j + 4].iter().map(|f| f.len()).collect();
+                assert_eq!(sizes, vec![3, 3, 4, 4]);
+                assert!(r.faces[4 * j][0] == 0 && r.faces[4 * j + 1][0] == 0);
+            }
+            assert_eq!(
+                r.faces.iter().filter(|f| f.len() == 3).count(),
+                2 * n as usize
+            );
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "is not triangle")]
+    fn a_seed_naming_the_wrong_faces_panics() {
+        let (t, mut seed) = bipyramid_seed(5);
+        seed.triangles.swap(0, 1);
+        let _ = refine(&t, &charts(t.num_faces() as u32), &[seed]);
+    }
+}
