@@ -23,6 +23,7 @@ pub mod obj;
 pub mod refine;
 pub mod samples;
 pub mod stencil;
+pub mod tessellate;
 pub mod topology;
 
 pub use error::MeshError;

@@ -1,0 +1,255 @@
+//! Crack-free, welded tessellation of a patchwork surface: bicubic and
+//! bi-quartic Bézier patches that meet along whole edges, or — across the
+//! rings of a subdivision cap, whose patches halve in size ring after ring —
+//! one patch against two of half its size, each covering half of the edge.
+//! Each cap leaves a last hole, closed by a fan of triangles to its limit
+//! point.
+//!
+//! [`tessellate`] samples every patch on a `grid × grid` parameter grid
+//! (`(u, v) = (a/grid, b/grid)`, [`capdiv::TensorPatch::evaluate`]):
+//!
+//! - an edge whose [`TessPatch::finer`] bit is set is sampled at `2·grid`
+//!   segments (the midpoints `(2c+1)/(2·grid)` added), so its points are
+//!   exactly those of the two half-size neighbours' `grid`-segment edges. The
+//!   cells along it become triangle fans from a midpoint (a cell with one
+//!   midpoint: 3 triangles), so there is no T-junction;
+//! - an edge whose [`TessPatch::hole`] bit is set gets one triangle per
+//!   segment, `(segment reversed, hole_point)`, oriented like the patch;
+//! - samples that coincide within `weld_tolerance` (absolute, per
+//!   coordinate: `max |Δx|, |Δy|, |Δz| ≤ tol`) are merged into one vertex
+//!   (sorting on quantised coordinates, `O(N log N)`; see [`weld`]).
+//!
+//! The result is a [`Tessellation`]: a closed input surface gives a closed,
+//! consistently oriented mesh ([`is_closed_and_oriented`]). Faces are
+//! [`Face::Quad`] (interior cells) or [`Face::Tri`] (cells along a finer edge,
+//! hole fans), counter-clockwise about `∂u × ∂v` of their patch; indices are
+//! 0-based `u32`. [`write_obj`] writes Wavefront OBJ text.
+
+mod check;
+mod obj;
+mod sample;
+pub mod weld;
+
+use alloc::vec;
+use alloc::vec::Vec;
+use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
+
+pub use check::{is_closed_and_oriented, BadEdge, EdgeFault};
+pub use obj::write_obj;
+
+/// Edge `v = 0` of a patch's own square, `u` running from 0 to 1.
+pub const EDGE_V0: u8 = 0;
+/// Edge `u = 1`, `v` from 0 to 1.
+pub const EDGE_U1: u8 = 1;
+/// Edge `v = 1`, `u` from 1 to 0.
+pub const EDGE_V1: u8 = 2;
+/// Edge `u = 0`, `v` from 1 to 0.
+pub const EDGE_U0: u8 = 3;
+
+/// The bit of edge `e` (one of `EDGE_*`) in [`TessPatch::finer`] and
+/// [`TessPatch::hole`]: `1 << e`.
+pub const fn edge_bit(e: u8) -> u8 {
+    1 << e
+}
+
+/// The geometry of one patch to tessellate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PatchGeometry<R> {
+    /// A bicubic patch (C²PS rings, B-spline faces, Catmull-Clark caps).
+    Cubic(BicubicPatch<R>),
+    /// A bi-quartic patch (EG rings).
+    Quartic(BiquarticPatch<R>),
+}
+
+/// One patch to tessellate, with what lies across each of its edges.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TessPatch<R> {
+    /// The Bézier patch.
+    pub geometry: PatchGeometry<R>,
+    /// Bit `e` ([`edge_bit`]) set: across edge `e` lie two patches of half
+    /// this one's size; that edge is sampled twice as finely.
+    pub finer: u8,
+    /// Bit `e` set: edge `e` borders the cap's last hole, closed by triangles
+    /// to [`TessPatch::hole_point`].
+    pub hole: u8,
+    /// The point the hole's fan meets (the cap's limit point); unused when
+    /// `hole` is 0.
+    pub hole_point: Point3<R>,
+    /// Free tag copied to every output face of this patch.
+    pub tag: u32,
+}
+
+impl<R: Real> TessPatch<R> {
+    /// A patch with no finer edge and no hole edge.
+    pub fn new(geometry: PatchGeometry<R>, tag: u32) -> Self {
+        TessPatch {
+            geometry,
+            finer: 0,
+            hole: 0,
+            hole_point: Point3::ZERO,
+            tag,
+        }
+    }
+}
+
+/// One output face: 0-based vertex indices, counter-clockwise about
+/// `∂u × ∂v` of the patch it comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Face {
+    /// A triangle (a cell along a finer edge, or a hole fan triangle).
+    Tri([u32; 3]),
+    /// A quad (a grid cell).
+    Quad([u32; 4]),
+}
+
+impl Face {
+    /// The corners in order (3 or 4).
+    pub fn corners(&self) -> &[u32] {
+        match self {
+            Face::Tri(c) => c,
+            Face::Quad(c) => c,
+        }
+    }
+
+    fn map(self, f: impl Fn(u32) -> u32) -> Self {
+        match self {
+            Face::Tri(c) => Face::Tri(c.map(f)),
+            Face::Quad(c) => Face::Quad(c.map(f)),
+        }
+    }
+
+    /// Two corners equal.
+    fn is_degenerate(&self) -> bool {
+        let c = self.corners();
+        (0..c.len()).any(|i| c[i + 1..].contains(&c[i]))
+    }
+}
+
+/// A welded polygon mesh of a patchwork surface.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Tessellation<R> {
+    /// Vertex positions, in the order of their first sample.
+    pub positions: Vec<Point3<R>>,
+    /// Per vertex: the unit normal `∂u × ∂v / |∂u × ∂v|` of the first sample
+    /// welded into it whose normal exists (the zero vector where every sample
+    /// is degenerate). A vertex made of hole points only (a cap's limit
+    /// point, which no patch samples) gets the normalised, area-weighted sum
+    /// of its faces' normals instead.
+    pub normals: Vec<Point3<R>>,
+    /// The faces, patch after patch in input order.
+    pub faces: Vec<Face>,
+    /// Per face: the [`TessPatch::tag`] of its patch.
+    pub tags: Vec<u32>,
+    /// Samples taken before welding (grid points, edge midpoints, hole points).
+    pub samples: usize,
+    /// Faces dropped because welding made two of their corners equal (none
+    /// for good input).
+    pub degenerate_dropped: usize,
+}
+
+/// Tessellates `patches` with `grid` segments per patch side (`grid = 0` is
+/// taken as 1) and welds samples within `weld_tolerance` (a negative or NaN
+/// tolerance is taken as 0: only equal coordinates weld). See the module doc.
+///
+/// # Panics
+///
+/// If the samples outnumber `u32::MAX` (`u32` indices).
+pub fn tessellate<R: Real>(
+    patches: impl IntoIterator<Item = TessPatch<R>>,
+    grid: usize,
+    weld_tolerance: R,
+) -> Tessellation<R> {
+    let grid = grid.max(1);
+    let mut raw = sample::Raw::new(grid);
+    for p in patches {
+        raw.push(&p);
+    }
+    let sample::Raw {
+        positions: raw_pos,
+        normals: raw_nrm,
+        faces: raw_faces,
+        tags: raw_tags,
+        ..
+    } = raw;
+    let samples = raw_pos.len();
+    assert!(
+        u32::try_from(samples).is_ok(),
+        "tessellate: more than u32::MAX samples"
+    );
+
+    // Welding: raw sample → representative sample → compact vertex index.
+    let rep = weld::representatives(&raw_pos, weld_tolerance);
+    let mut index = vec![u32::MAX; samples];
+    let mut positions = Vec::new();
+    let mut normals = Vec::new();
+    // Whether some patch sample (not only hole points) went into the vertex.
+    let mut sampled = Vec::new();
+    for k in 0..samples {
+        let r = rep[k] as usize;
+        if r == k {
+            index[k] = positions.len() as u32;
+            positions.push(raw_pos[k]);
+            normals.push(Point3::ZERO);
+            sampled.push(false);
+        }
+        let w = index[r] as usize;
+        if let Some(n) = raw_nrm[k] {
+            sampled[w] = true;
+            if normals[w] == Point3::ZERO {
+                normals[w] = n;
+            }
+        }
+    }
+
+    let mut faces = Vec::with_capacity(raw_faces.len());
+    let mut tags = Vec::with_capacity(raw_faces.len());
+    let mut degenerate_dropped = 0;
+    for (f, tag) in raw_faces.into_iter().zip(raw_tags) {
+        let f = f.map(|k| index[rep[k as usize] as usize]);
+        if f.is_degenerate() {
+            degenerate_dropped += 1;
+        } else {
+            faces.push(f);
+            tags.push(tag);
+        }
+    }
+
+    // Hole points only: area-weighted face normals.
+    if sampled.iter().any(|s| !s) {
+        for f in &faces {
+            let c = f.corners();
+            // Twice the vector area of the polygon (Newell), about its first corner.
+            let p0 = positions[c[0] as usize];
+            let mut area = Point3::ZERO;
+            for i in 1..c.len() - 1 {
+                let a = positions[c[i] as usize] - p0;
+                let b = positions[c[i + 1] as usize] - p0;
+                area += a.cross(b);
+            }
+            for &v in c {
+                if !sampled[v as usize] {
+                    normals[v as usize] += area;
+                }
+            }
+        }
+        for (n, s) in normals.iter_mut().zip(&sampled) {
+            if !s {
+                let len = n.norm();
+                *n = if len > R::ZERO && len.is_finite() {
+                    *n * (R::ONE / len)
+                } else {
+                    Point3::ZERO
+                };
+            }
+        }
+    }
+
+    Tessellation {
+        positions,
+        normals,
+        faces,
+        tags,
+        samples,
+        degenerate_dropped,
+    }
+}
