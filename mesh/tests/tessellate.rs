@@ -771,3 +771,150 @@ fn timing_large_patchwork() {
     );
     assert_eq!(t.positions.len(), 6 * (m * grid) * (m * grid) + 2);
 }
+
+/// A real C²PS cap from the kernel: rings of levels 0..5 (each ring's inner
+/// edge against two patches of the next, valence doubling), the last ring's
+/// inner edge fanned to the pole's limit point. The result is a disk: every
+/// edge paired in opposite directions except the outer boundary, one loop.
+#[test]
+fn c2ps_cap_rings_weld_into_a_disk() {
+    use capdiv::{FirstStep, PolarNet, PoleJet};
+    let n = 6;
+    // An uneven surface around the pole.
+    let links: Vec<Vec<[f64; 3]>> = (1..=5)
+        .map(|i| {
+            (0..n)
+                .map(|j| {
+                    let t = std::f64::consts::TAU * j as f64 / n as f64;
+                    let r = i as f64 * (1.0 + 0.1 * (j % 3) as f64);
+                    let (x, y) = (r * t.cos(), r * t.sin());
+                    [x, y, 0.25 * x * x - 0.1 * y * y + 0.05 * x * y * y]
+                })
+                .collect()
+        })
+        .collect();
+    let mut net: PolarNet<f64, 512> = PolarNet::new([0.0, 0.0, 0.1], &links).unwrap();
+    let levels = 5;
+    let mut patches = Vec::new();
+    for level in 0..levels {
+        let last = level + 1 == levels;
+        let valence = net.valence();
+        let limit = PoleJet::of(&net).limit();
+        for (k, b) in net.ring_patches().unwrap().enumerate() {
+            let mut t = TessPatch::new(PatchGeometry::Cubic(b), level as u32);
+            if k < valence {
+                // Span 0: its inner edge u = 0 faces the next ring, or the hole.
+                if last {
+                    t.hole = edge_bit(EDGE_U0);
+                    t.hole_point = limit;
+                } else {
+                    t.finer = edge_bit(EDGE_U0);
+                }
+            }
+            patches.push(t);
+        }
+        net.step(FirstStep::Uniform).unwrap();
+    }
+    for grid in [1, 3] {
+        let t = tessellate(patches.iter().copied(), grid, 1e-9);
+        assert_disk(&t, n * grid);
+    }
+}
+
+/// A real EG cap from the kernel: per step and sector 3 bi-4 patches over the
+/// L between the old hole `[0,1]²` and the new `[0,½]²` (spec EG.md §9): patch
+/// `3s` over `[½,1]×[0,½]` has its edge `u = 0`, patch `3s+1` over
+/// `[0,½]×[½,1]` its edge `v = 0` on the new hole — against two patches of
+/// the next ring, or, after the last step, fanned to the limit point `c0`.
+#[test]
+fn eg_cap_rings_weld_into_a_disk() {
+    use capdiv::eg::{CNet, EgSubdivision};
+    for n in [3usize, 5] {
+        // §1 order per sector: (x, y) = (1,0), (2,0), (1,1), (2,1), (1,2), (2,2),
+        // sector s's quarter-plane squeezed into the angle 2π/n, a bumpy paraboloid.
+        let mut nodes = Vec::new();
+        for s in 0..n {
+            for (x, y) in [
+                (1.0f64, 0.0f64),
+                (2.0, 0.0),
+                (1.0, 1.0),
+                (2.0, 1.0),
+                (1.0, 2.0),
+                (2.0, 2.0),
+            ] {
+                let a = std::f64::consts::TAU / n as f64;
+                let t = s as f64 * a + a * y.atan2(x) / std::f64::consts::FRAC_PI_2;
+                let r = (x * x + y * y).sqrt();
+                let bump = 0.05 * ((s * 7 + (x as usize) * 3 + y as usize) % 5) as f64;
+                nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r + bump]);
+            }
+        }
+        let c = CNet::new([0.0, 0.0, 0.02], &nodes).unwrap();
+        let limit = c.limit();
+        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        let steps = 4;
+        let mut patches = Vec::new();
+        for m in 0..steps {
+            sub.step().unwrap();
+            let last = m + 1 == steps;
+            for (k, b) in sub.ring_patches().enumerate() {
+                let mut t = TessPatch::new(PatchGeometry::Quartic(b), m as u32);
+                let inner = match k % 3 {
+                    0 => edge_bit(EDGE_U0),
+                    1 => edge_bit(EDGE_V0),
+                    _ => 0,
+                };
+                if last {
+                    t.hole = inner;
+                    t.hole_point = limit;
+                } else {
+                    t.finer = inner;
+                }
+                patches.push(t);
+            }
+        }
+        for grid in [1, 4] {
+            let t = tessellate(patches.iter().copied(), grid, 1e-9);
+            // Outer boundary: per sector x = 1 and y = 1, two patch edges each.
+            assert_disk(&t, 4 * n * grid);
+        }
+    }
+}
+
+/// A disk: every edge used once in each direction except `boundary_edges`
+/// boundary edges forming one loop; Euler characteristic 1.
+fn assert_disk(t: &Tessellation<f64>, boundary_edges: usize) {
+    assert_eq!(t.degenerate_dropped, 0);
+    let mut uses = std::collections::BTreeMap::new();
+    for f in &t.faces {
+        let c = f.corners();
+        for i in 0..c.len() {
+            *uses.entry((c[i], c[(i + 1) % c.len()])).or_insert(0) += 1;
+        }
+    }
+    let mut boundary = Vec::new();
+    for (&(a, b), &k) in &uses {
+        assert_eq!(k, 1, "edge {a}->{b} used {k} times in one direction");
+        if !uses.contains_key(&(b, a)) {
+            boundary.push((a, b));
+        }
+    }
+    assert_eq!(boundary.len(), boundary_edges);
+    // One loop.
+    let next: std::collections::BTreeMap<u32, u32> = boundary.iter().copied().collect();
+    let (mut v, mut steps) = (boundary[0].0, 0);
+    loop {
+        v = next[&v];
+        steps += 1;
+        if v == boundary[0].0 {
+            break;
+        }
+    }
+    assert_eq!(steps, boundary.len());
+    assert_eq!(euler_open(t), 1);
+}
+
+/// V − E + F of a mesh that may have a boundary.
+fn euler_open(t: &Tessellation<f64>) -> i64 {
+    t.positions.len() as i64 - edges(&t.faces).len() as i64 + t.faces.len() as i64
+}

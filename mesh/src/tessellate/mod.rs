@@ -16,8 +16,10 @@
 //! - an edge whose [`TessPatch::hole`] bit is set gets one triangle per
 //!   segment, `(segment reversed, hole_point)`, oriented like the patch;
 //! - samples that coincide within `weld_tolerance` (absolute, per
-//!   coordinate: `max |Δx|, |Δy|, |Δz| ≤ tol`) are merged into one vertex
-//!   (sorting on quantised coordinates, `O(N log N)`; see [`weld`]).
+//!   coordinate: `max |Δx|, |Δy|, |Δz| ≤ tol`), directly or through a chain
+//!   of such samples, are merged into one vertex (sorting on quantised
+//!   coordinates, `O(N log N)`; see [`weld`]). Vertices are numbered in the
+//!   order of their first sample.
 //!
 //! The result is a [`Tessellation`]: a closed input surface gives a closed,
 //! consistently oriented mesh ([`is_closed_and_oriented`]). Faces are
