@@ -80,7 +80,8 @@ pub fn is_fan(t: &Topology, v: usize) -> bool {
     t.vertex_first(v) != NONE
         && !t.is_boundary(v)
         && t.vertex_face_count(v) >= 3
-        && t.outgoing(v).all(|h| t.face_len(t.face_of(h) as usize) == 3)
+        && t.outgoing(v)
+            .all(|h| t.face_len(t.face_of(h) as usize) == 3)
 }
 
 /// The polar configuration around `v` (a fan, [`is_fan`]), starting its
@@ -327,7 +328,10 @@ mod tests {
         let m = pole_disk(6, 2);
         let t = Topology::new(&m).unwrap();
         let c = polar_config(&t, 0, None, true).unwrap();
-        assert_eq!(c.link3[0], vec![(c.links[1][0], 2.0), (c.links[0][0], -1.0)]);
+        assert_eq!(
+            c.link3[0],
+            vec![(c.links[1][0], 2.0), (c.links[0][0], -1.0)]
+        );
         // Links 1 only: no configuration.
         let m = pole_disk(6, 1);
         let t = Topology::new(&m).unwrap();

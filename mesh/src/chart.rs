@@ -104,7 +104,12 @@ impl Affine {
     pub fn rect(&self, r: [f64; 4]) -> [f64; 4] {
         let a = self.apply(r[0], r[2]);
         let b = self.apply(r[1], r[3]);
-        [a[0].min(b[0]), a[0].max(b[0]), a[1].min(b[1]), a[1].max(b[1])]
+        [
+            a[0].min(b[0]),
+            a[0].max(b[0]),
+            a[1].min(b[1]),
+            a[1].max(b[1]),
+        ]
     }
 
     /// Re-indexes a `K×K` control grid `p[i][j]` (`i` along `s`, `j` along `t`)

@@ -190,7 +190,12 @@ mod tests {
         for j in 0..nv {
             for i in 0..nu {
                 let v = |a: usize, b: usize| (a + w * b) as u32;
-                faces.push(alloc::vec![v(i, j), v(i + 1, j), v(i + 1, j + 1), v(i, j + 1)]);
+                faces.push(alloc::vec![
+                    v(i, j),
+                    v(i + 1, j),
+                    v(i + 1, j + 1),
+                    v(i, j + 1)
+                ]);
             }
         }
         MeshInput::new(verts, faces)

@@ -65,7 +65,11 @@ impl StencilTable {
 
     /// Largest source index used plus one (0 for an empty table).
     pub fn source_len(&self) -> usize {
-        self.indices.iter().map(|&i| i as usize + 1).max().unwrap_or(0)
+        self.indices
+            .iter()
+            .map(|&i| i as usize + 1)
+            .max()
+            .unwrap_or(0)
     }
 
     /// Applies every row to `src`, writing `out[i]`. `out` must have

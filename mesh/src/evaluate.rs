@@ -1,0 +1,618 @@
+//! `Evaluator`: runs a [`SurfacePlan`] on vertex positions and hands every
+//! patch and cap to a [`SurfaceSink`]. All buffers and kernel nets are sized
+//! once in [`Evaluator::new`]; [`Evaluator::evaluate`] allocates nothing, so a
+//! caller repeats it whenever vertices move and the topology does not.
+//!
+//! Patches are given in their input face's own parameter square (see
+//! [`crate::chart`]): `domain = [u0, u1, v0, v1]`, control point `[i][j]` with
+//! `i` along `u`, `j` along `v`. Faces of a polar fan (triangles) use polar
+//! coordinates instead: `u` is the distance from the pole in link units (0 at
+//! the pole, 1 on the triangle's edge on the 1-link), `v` runs from the
+//! triangle's first spoke (counter-clockwise order around the pole) to its
+//! second.
+
+use crate::chart::{Affine, FaceChart};
+use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
+use crate::tessellate::PatchGeometry;
+use alloc::boxed::Box;
+use alloc::vec;
+use alloc::vec::Vec;
+use capdiv::bezier::bspline_to_bezier_cubic;
+use capdiv::eg::{CNet, EgSubdivision, PatchDomain};
+use capdiv::{CcCap, Error, FirstStep, Point3, PolarNet, PoleJet, Real, TensorPatch};
+
+/// What a patch is made by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PatchKind {
+    /// Uniform bicubic B-spline of a regular face.
+    Regular,
+    /// A C²PS ring patch.
+    Polar,
+    /// An EG ring patch (bi-quartic).
+    Eg,
+    /// A Catmull-Clark ring patch.
+    CatmullClark,
+}
+
+impl PatchKind {
+    /// Identifier used in JSON.
+    pub fn id(self) -> &'static str {
+        match self {
+            PatchKind::Regular => "regular",
+            PatchKind::Polar => "polar",
+            PatchKind::Eg => "eg",
+            PatchKind::CatmullClark => "catmull-clark",
+        }
+    }
+}
+
+/// One patch of the surface.
+#[derive(Clone, Debug)]
+pub struct PatchRecord<R> {
+    /// Its scheme.
+    pub kind: PatchKind,
+    /// Subdivision level relative to the input: the patch is `2^-level` of
+    /// its input face across (refinement steps included).
+    pub level: u32,
+    /// The input face it lies in.
+    pub face: u32,
+    /// For input faces that are not quads (and not polar triangles): the
+    /// corner whose sub-quad holds the patch ([`crate::chart`]).
+    pub corner: Option<u8>,
+    /// `[u0, u1, v0, v1]` in the face's (or sub-quad's) square.
+    pub domain: [f64; 4],
+    /// Bézier control points, oriented to the input face.
+    pub geometry: PatchGeometry<R>,
+    /// Edges (0: v=0, 1: u=1, 2: v=1, 3: u=0) met by two half-size patches.
+    pub finer: u8,
+    /// Edges bordering the cap's last hole.
+    pub hole: u8,
+    /// The cap's limit point (where `hole` edges are closed to).
+    pub hole_point: Point3<R>,
+    /// Index of the cap it belongs to (polar caps first, then EG and
+    /// Catmull-Clark caps, in plan order), if any.
+    pub cap: Option<u32>,
+}
+
+/// One cap's centre.
+#[derive(Clone, Debug)]
+pub struct CapRecord<R> {
+    /// Index (as in [`PatchRecord::cap`]).
+    pub index: u32,
+    /// The input vertex at its centre, if it is one.
+    pub vertex: Option<u32>,
+    /// The input face whose centre it is, otherwise.
+    pub face: Option<u32>,
+    /// The scheme.
+    pub scheme: Scheme,
+    /// Valence in the input (for a refined pole, before refinement).
+    pub valence: usize,
+    /// Limit point.
+    pub limit: Point3<R>,
+    /// Unit normal at the limit point (C²PS: from the pole jet; EG: from the
+    /// last ring; Catmull-Clark: the limit tangents), if not degenerate.
+    pub normal: Option<Point3<R>>,
+    /// Principal curvatures at the limit point: C²PS only (exact, spec
+    /// C2PS.md §4); EG and Catmull-Clark caps report none.
+    pub principal_curvatures: Option<[R; 2]>,
+}
+
+/// Receives the surface.
+pub trait SurfaceSink<R> {
+    /// One patch.
+    fn patch(&mut self, p: &PatchRecord<R>);
+    /// One cap (after its patches).
+    fn cap(&mut self, c: &CapRecord<R>);
+}
+
+/// Why an evaluation failed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum EvalError {
+    /// `positions` does not have one entry per input vertex.
+    WrongLength {
+        /// Entries needed.
+        expected: usize,
+        /// Entries given.
+        found: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    NonFinite {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A polar cap would exceed the largest net capacity.
+    CapacityExceeded {
+        /// The pole (input vertex).
+        vertex: u32,
+        /// Valence needed at the deepest level.
+        needed: usize,
+        /// The largest capacity.
+        max: usize,
+    },
+    /// The kernel refused a cap.
+    Kernel {
+        /// The cap's index.
+        cap: u32,
+        /// The kernel's error.
+        error: Error,
+    },
+}
+
+impl core::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            EvalError::WrongLength { expected, found } => {
+                write!(f, "{found} positions given, the mesh has {expected} vertices")
+            }
+            EvalError::NonFinite { vertex } => {
+                write!(f, "vertex {vertex} has a coordinate that is not finite")
+            }
+            EvalError::CapacityExceeded {
+                vertex,
+                needed,
+                max,
+            } => write!(
+                f,
+                "the pole at vertex {vertex} needs valence {needed} at the requested depth, at most {max} is supported"
+            ),
+            EvalError::Kernel { cap, error } => write!(f, "cap {cap}: {error}"),
+        }
+    }
+}
+
+/// Net capacities compiled in (valence at the deepest level).
+pub const POLAR_TIERS: [usize; 4] = [1 << 10, 1 << 12, 1 << 14, 1 << 17];
+
+/// A polar net of the smallest tier that fits the plan.
+enum PolarStore<R> {
+    T10(Box<PolarNet<R, { POLAR_TIERS[0] }>>),
+    T12(Box<PolarNet<R, { POLAR_TIERS[1] }>>),
+    T14(Box<PolarNet<R, { POLAR_TIERS[2] }>>),
+    T17(Box<PolarNet<R, { POLAR_TIERS[3] }>>),
+}
+
+/// Runs `$body` with `$net` bound to the store's net, whatever its tier.
+macro_rules! with_net {
+    ($store:expr, $net:ident => $body:expr) => {
+        match $store {
+            PolarStore::T10($net) => $body,
+            PolarStore::T12($net) => $body,
+            PolarStore::T14($net) => $body,
+            PolarStore::T17($net) => $body,
+        }
+    };
+}
+
+/// Evaluation state, sized for one plan.
+pub struct Evaluator<R: Real> {
+    /// Points of each refinement level (level 0: the input positions).
+    levels: Vec<Vec<Point3<R>>>,
+    /// The analysed level's vertices followed by the phantom points.
+    work: Vec<Point3<R>>,
+    polar: Option<PolarStore<R>>,
+    links: Vec<[R; 3]>,
+    cnet: Vec<[R; 3]>,
+    cc: Vec<Point3<R>>,
+    eg: Box<EgSubdivision<'static, R>>,
+}
+
+impl<R: Real> Evaluator<R> {
+    /// Sizes every buffer for `plan`. [`EvalError::CapacityExceeded`] when a
+    /// polar cap's deepest valence exceeds the largest tier.
+    pub fn new(plan: &SurfacePlan<'_>) -> Result<Self, EvalError> {
+        let depth = plan.options.depth;
+        let mut need = 0usize;
+        for p in &plan.polar {
+            let needed = p
+                .valence
+                .checked_shl(depth)
+                .filter(|x| x >> depth == p.valence);
+            match needed {
+                Some(x) if x <= POLAR_TIERS[3] => need = need.max(x),
+                _ => {
+                    return Err(EvalError::CapacityExceeded {
+                        vertex: p.vertex,
+                        needed: needed.unwrap_or(usize::MAX),
+                        max: POLAR_TIERS[3],
+                    })
+                }
+            }
+        }
+        let polar = match need {
+            0 => None,
+            x if x <= POLAR_TIERS[0] => Some(PolarStore::T10(Box::new(PolarNet::empty()))),
+            x if x <= POLAR_TIERS[1] => Some(PolarStore::T12(Box::new(PolarNet::empty()))),
+            x if x <= POLAR_TIERS[2] => Some(PolarStore::T14(Box::new(PolarNet::empty()))),
+            _ => Some(PolarStore::T17(Box::new(PolarNet::empty()))),
+        };
+        let mut levels = vec![vec![Point3::ZERO; plan.input_vertices]];
+        for s in &plan.steps {
+            levels.push(vec![Point3::ZERO; s.len()]);
+        }
+        let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
+        let max_ev = plan.ev.iter().map(|e| e.sectors.len()).max().unwrap_or(0);
+        Ok(Evaluator {
+            levels,
+            work: vec![Point3::ZERO; plan.working_points()],
+            polar,
+            links: vec![[R::ZERO; 3]; 3 * max_n],
+            cnet: vec![[R::ZERO; 3]; 6 * max_ev],
+            cc: vec![Point3::ZERO; CcCap::<R>::storage_len(max_ev.max(3))],
+            eg: Box::new(EgSubdivision::empty()),
+        })
+    }
+
+    /// Evaluates the surface for `positions` (one per input vertex).
+    pub fn evaluate<'t>(
+        &mut self,
+        plan: &SurfacePlan<'t>,
+        positions: &[[R; 3]],
+        sink: &mut dyn SurfaceSink<R>,
+    ) -> Result<(), EvalError> {
+        if positions.len() != plan.input_vertices || self.levels[0].len() != positions.len() {
+            return Err(EvalError::WrongLength {
+                expected: plan.input_vertices,
+                found: positions.len(),
+            });
+        }
+        if let Some(vertex) = positions
+            .iter()
+            .position(|p| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(EvalError::NonFinite { vertex });
+        }
+        for (d, s) in self.levels[0].iter_mut().zip(positions) {
+            *d = Point3(*s);
+        }
+        for (k, s) in plan.steps.iter().enumerate() {
+            let (src, dst) = self.levels.split_at_mut(k + 1);
+            s.apply(&src[k], &mut dst[0]);
+        }
+        let last = self.levels.last().map(Vec::as_slice).unwrap_or(&[]);
+        let split = plan.vertices.min(self.work.len());
+        let (verts, phantoms) = self.work.split_at_mut(split);
+        verts.copy_from_slice(&last[..verts.len()]);
+        plan.phantoms.apply(verts, phantoms);
+
+        let level0 = plan.steps.len() as u32;
+        for r in &plan.regular {
+            let mut d = [[Point3::ZERO; 4]; 4];
+            for (i, row) in d.iter_mut().enumerate() {
+                for (j, p) in row.iter_mut().enumerate() {
+                    *p = self.work[r.gather[4 * i + j] as usize];
+                }
+            }
+            let patch = TensorPatch {
+                points: bspline_to_bezier_cubic(&d),
+            };
+            sink.patch(&record(
+                PatchKind::Regular,
+                level0,
+                &r.chart,
+                [0.0, 1.0, 0.0, 1.0],
+                patch,
+                r.finer,
+                0,
+                Point3::ZERO,
+                None,
+            ));
+        }
+        for (index, p) in plan.polar.iter().enumerate() {
+            self.polar_cap(plan, p, index as u32, sink)?;
+        }
+        let base = plan.polar.len() as u32;
+        for (index, e) in plan.ev.iter().enumerate() {
+            self.ev_cap(plan, e, base + index as u32, sink)?;
+        }
+        Ok(())
+    }
+
+    fn polar_cap(
+        &mut self,
+        plan: &SurfacePlan<'_>,
+        p: &PolarPlan,
+        index: u32,
+        sink: &mut dyn SurfaceSink<R>,
+    ) -> Result<(), EvalError> {
+        let n = p.valence;
+        let kernel = |error| EvalError::Kernel { cap: index, error };
+        for (d, &i) in self.links.iter_mut().zip(&p.links) {
+            *d = self.work[i as usize].0;
+        }
+        let pole = self.work[p.pole as usize].0;
+        let links = &self.links;
+        let Some(store) = self.polar.as_mut() else {
+            return Ok(());
+        };
+        let depth = plan.options.depth;
+        let n_in = n >> p.pre;
+        with_net!(store, net => {
+            let (l1, rest) = links.split_at(n);
+            let (l2, l3) = rest.split_at(n);
+            net.reset(pole, &[l1, l2, &l3[..n]]).map_err(kernel)?;
+            let jet = PoleJet::of(&**net);
+            let limit = jet.limit();
+            let geometry = jet.geometry().ok();
+            for m in 1..=depth {
+                net.step(if m == 1 { p.first } else { FirstStep::Plain })
+                    .map_err(kernel)?;
+                let cols = net.valence();
+                // Columns of this level per input triangle.
+                let per = cols / n_in.max(1);
+                let scale = 1.0 / (1u64 << (m + p.pre)) as f64;
+                for span in 0..2 {
+                    let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
+                    for c in 0..cols {
+                        let patch = net.ring_patch(span, c).map_err(kernel)?;
+                        let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
+                        let (v0, v1) = (((c % per) as f64) / per as f64, ((c % per) + 1) as f64 / per as f64);
+                        let inner = if span == 0 { 1 << 3 } else { 0 };
+                        let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
+                        let chart = if r1 <= 1.0 || p.quads.is_empty() {
+                            FaceChart { face: tri, corner: None, map: Affine::IDENTITY }
+                        } else {
+                            p.quads.get(c >> m).copied().unwrap_or(FaceChart::input(tri))
+                        };
+                        let rect = if r1 <= 1.0 { [r0, r1, v0, v1] } else { [r0 - 1.0, r1 - 1.0, v0, v1] };
+                        sink.patch(&record(PatchKind::Polar, m + p.pre, &chart, rect, patch, finer, hole, limit, Some(index)));
+                    }
+                }
+            }
+            sink.cap(&CapRecord {
+                index,
+                vertex: Some(p.vertex),
+                face: None,
+                scheme: Scheme::C2ps,
+                valence: n_in,
+                limit,
+                normal: geometry.map(|g| g.normal),
+                principal_curvatures: geometry.map(|g| g.principal),
+            });
+        });
+        Ok(())
+    }
+
+    fn ev_cap(
+        &mut self,
+        plan: &SurfacePlan<'_>,
+        e: &EvPlan,
+        index: u32,
+        sink: &mut dyn SurfaceSink<R>,
+    ) -> Result<(), EvalError> {
+        let n = e.sectors.len();
+        let kernel = |error| EvalError::Kernel { cap: index, error };
+        for (d, &i) in self.cnet.iter_mut().zip(&e.nodes) {
+            *d = self.work[i as usize].0;
+        }
+        let center = self.work[e.center as usize].0;
+        let nodes = &self.cnet[..6 * n];
+        let depth = plan.options.depth;
+        let level0 = plan.steps.len() as u32;
+        let emit = |sink: &mut dyn SurfaceSink<R>,
+                    m: u32,
+                    k: usize,
+                    dom: PatchDomain,
+                    geometry: Geom<R>,
+                    kind: PatchKind,
+                    limit: Point3<R>| {
+            let chart = e
+                .sectors
+                .get(dom.sector)
+                .copied()
+                .unwrap_or(FaceChart::input(0));
+            let rect = [dom.x0, dom.x0 + dom.size, dom.y0, dom.y0 + dom.size];
+            // Piece 0 ([½,1]×[0,½]) meets the next ring along u = 0, piece 1
+            // ([0,½]×[½,1]) along v = 0.
+            let inner = match k % 3 {
+                0 => 1 << 3,
+                1 => 1,
+                _ => 0,
+            };
+            let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
+            let rec = match geometry {
+                Geom::Cubic(p) => record(
+                    kind,
+                    m + level0,
+                    &chart,
+                    rect,
+                    p,
+                    finer,
+                    hole,
+                    limit,
+                    Some(index),
+                ),
+                Geom::Quartic(p) => record(
+                    kind,
+                    m + level0,
+                    &chart,
+                    rect,
+                    p,
+                    finer,
+                    hole,
+                    limit,
+                    Some(index),
+                ),
+            };
+            sink.patch(&rec);
+        };
+        match e.scheme {
+            Scheme::Eg => {
+                let net = CNet::new(center, nodes).map_err(kernel)?;
+                match e.table.and_then(|i| plan.options.eg_tables.get(i)) {
+                    // The user's table borrows from the plan; run on a local
+                    // subdivision (about 6 KiB in f64).
+                    Some(table) => {
+                        let mut eg = EgSubdivision::empty();
+                        eg.reset_from_cnet_with_table(&net, *table)
+                            .map_err(kernel)?;
+                        run_eg(&mut eg, depth, sink, &emit, e, index)?;
+                    }
+                    None => {
+                        self.eg.reset_from_cnet(&net).map_err(kernel)?;
+                        run_eg(&mut self.eg, depth, sink, &emit, e, index)?;
+                    }
+                }
+            }
+            _ => {
+                let mut cap = CcCap::new(center, nodes, &mut self.cc).map_err(kernel)?;
+                let limit = cap.limit();
+                for m in 1..=depth {
+                    cap.step().map_err(kernel)?;
+                    for k in 0..cap.ring_len() {
+                        let patch = cap.ring_patch(k).map_err(kernel)?;
+                        let dom = cap.ring_patch_domain(k).map_err(kernel)?;
+                        emit(
+                            sink,
+                            m,
+                            k,
+                            dom,
+                            Geom::Cubic(patch),
+                            PatchKind::CatmullClark,
+                            limit,
+                        );
+                    }
+                }
+                sink.cap(&CapRecord {
+                    index,
+                    vertex: e.vertex,
+                    face: e.face,
+                    scheme: Scheme::CatmullClark,
+                    valence: n,
+                    limit,
+                    normal: cap.normal().ok(),
+                    principal_curvatures: None,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A ring patch of either degree.
+enum Geom<R> {
+    Cubic(TensorPatch<R, 4>),
+    Quartic(TensorPatch<R, 5>),
+}
+
+/// Runs an EG cap to `depth`, emitting its rings and then the cap record
+/// (normal: the mean of the last ring's normals at the corners nearest the
+/// centre, one per sector).
+fn run_eg<R: Real, F>(
+    eg: &mut EgSubdivision<'_, R>,
+    depth: u32,
+    sink: &mut dyn SurfaceSink<R>,
+    emit: &F,
+    e: &EvPlan,
+    index: u32,
+) -> Result<(), EvalError>
+where
+    F: Fn(&mut dyn SurfaceSink<R>, u32, usize, PatchDomain, Geom<R>, PatchKind, Point3<R>),
+{
+    let kernel = |error| EvalError::Kernel { cap: index, error };
+    let limit = eg.c0();
+    let mut normal_sum = Point3::ZERO;
+    for m in 1..=depth {
+        eg.step().map_err(kernel)?;
+        for (k, patch) in eg.ring_patches().enumerate() {
+            let dom = eg.ring_patch_domain(k).map_err(kernel)?;
+            if m == depth && k % 3 == 0 {
+                if let Ok(nrm) = patch.normal(R::ZERO, R::ZERO) {
+                    normal_sum += nrm;
+                }
+            }
+            emit(sink, m, k, dom, Geom::Quartic(patch), PatchKind::Eg, limit);
+        }
+    }
+    let len = normal_sum.norm();
+    sink.cap(&CapRecord {
+        index,
+        vertex: e.vertex,
+        face: e.face,
+        scheme: Scheme::Eg,
+        valence: e.sectors.len(),
+        limit,
+        normal: (len > R::ZERO && len.is_finite()).then(|| normal_sum * (R::ONE / len)),
+        principal_curvatures: None,
+    });
+    Ok(())
+}
+
+/// Which edge of the image square edge `k` of the own square maps to.
+fn edge_image(map: &Affine, k: u8) -> u8 {
+    let mid = match k {
+        0 => (0.5, 0.0),
+        1 => (1.0, 0.5),
+        2 => (0.5, 1.0),
+        _ => (0.0, 0.5),
+    };
+    let p = map.apply(mid.0, mid.1);
+    let c = map.apply(0.5, 0.5);
+    let (dx, dy) = (p[0] - c[0], p[1] - c[1]);
+    if dx.abs() > dy.abs() {
+        if dx > 0.0 {
+            1
+        } else {
+            3
+        }
+    } else if dy > 0.0 {
+        2
+    } else {
+        0
+    }
+}
+
+/// Edge bits re-expressed in the image frame.
+fn map_edges(map: &Affine, bits: u8) -> u8 {
+    (0..4u8)
+        .filter(|k| bits & (1 << k) != 0)
+        .fold(0, |acc, k| acc | (1 << edge_image(map, k)))
+}
+
+/// A patch given over `rect` of a face-local frame, placed through `chart`.
+#[allow(clippy::too_many_arguments)]
+fn record<R: Real, const K: usize>(
+    kind: PatchKind,
+    level: u32,
+    chart: &FaceChart,
+    rect: [f64; 4],
+    patch: TensorPatch<R, K>,
+    finer: u8,
+    hole: u8,
+    hole_point: Point3<R>,
+    cap: Option<u32>,
+) -> PatchRecord<R>
+where
+    TensorPatch<R, K>: IntoGeometry<R>,
+{
+    let map = &chart.map;
+    let points = map.orient(&patch.points);
+    PatchRecord {
+        kind,
+        level,
+        face: chart.face,
+        corner: chart.corner,
+        domain: map.rect(rect),
+        geometry: TensorPatch { points }.into_geometry(),
+        finer: map_edges(map, finer),
+        hole: map_edges(map, hole),
+        hole_point,
+        cap,
+    }
+}
+
+/// A Bézier patch of a degree the tessellator knows.
+trait IntoGeometry<R> {
+    fn into_geometry(self) -> PatchGeometry<R>;
+}
+
+impl<R> IntoGeometry<R> for TensorPatch<R, 4> {
+    fn into_geometry(self) -> PatchGeometry<R> {
+        PatchGeometry::Cubic(self)
+    }
+}
+
+impl<R> IntoGeometry<R> for TensorPatch<R, 5> {
+    fn into_geometry(self) -> PatchGeometry<R> {
+        PatchGeometry::Quartic(self)
+    }
+}
