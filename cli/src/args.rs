@@ -31,6 +31,9 @@ pub enum Command {
     Patches(PatchesArgs),
     /// Print the spectrum of the EG subdivision matrix of a valence.
     Spectrum(SpectrumArgs),
+    /// Turn a whole mesh (OBJ or JSON) into a smooth surface: patches and caps
+    /// as JSON, or a welded OBJ / PNG.
+    Surface(SurfaceArgs),
     /// Refine built-in sample surfaces, write OBJ/PNG/JSON files, print a summary.
     Demo(DemoArgs),
 }
@@ -178,6 +181,42 @@ pub struct PatchesArgs {
     /// Input and output.
     #[command(flatten)]
     pub io: Io,
+}
+
+/// `capdiv surface`.
+#[derive(Clone, Debug, Args)]
+pub struct SurfaceArgs {
+    /// Rings every cap emits (C²PS levels, EG and Catmull-Clark steps).
+    #[arg(long, default_value_t = 6, value_name = "M",
+          value_parser = clap::value_parser!(u32).range(0..=16))]
+    pub depth: u32,
+    /// Output format: JSON patches, caps and summary; a welded OBJ; a PNG.
+    #[arg(long, value_enum, default_value_t = PatchFormat::Json)]
+    pub format: PatchFormat,
+    /// OBJ and PNG: grid segments per patch side.
+    #[arg(long, default_value_t = 4, value_name = "G",
+          value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub grid: u32,
+    /// Scalar type of the evaluation and of the printed numbers.
+    #[arg(long, value_enum, default_value_t = Precision::F64)]
+    pub precision: Precision,
+    /// EG rule table for valence N (6..10), in the `spectrum --table` format;
+    /// repeatable. Valences without a table get Catmull-Clark caps.
+    #[arg(long = "eg-table", value_name = "N=FILE")]
+    pub eg_table: Vec<String>,
+    /// Do not print the summary on stderr.
+    #[arg(long)]
+    pub quiet: bool,
+    /// Pretty-print the JSON.
+    #[arg(long)]
+    pub pretty: bool,
+    /// The mesh: Wavefront OBJ or JSON `{"kind": "mesh", ...}` (chosen by
+    /// content), `-` for standard input.
+    #[arg(value_name = "MESH")]
+    pub file: String,
+    /// Write the output to this file (atomically) instead of standard output.
+    #[arg(short, long, value_name = "PATH")]
+    pub output: Option<PathBuf>,
 }
 
 /// `capdiv spectrum`.

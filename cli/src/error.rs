@@ -57,6 +57,21 @@ pub enum CliError {
         /// The kernel's error.
         error: capdiv::Error,
     },
+    /// The mesh was rejected (syntax, indices, topology), naming the face
+    /// or vertex.
+    Mesh {
+        /// The input's name.
+        source: String,
+        /// The mesh crate's error.
+        error: capdiv_mesh::MeshError,
+    },
+    /// Evaluating the surface of a mesh failed (capacity, kernel).
+    Eval {
+        /// The input's name.
+        source: String,
+        /// The evaluator's error.
+        error: capdiv_mesh::EvalError,
+    },
     /// A result coordinate overflowed the chosen precision.
     NonFiniteResult {
         /// The input's name.
@@ -93,6 +108,8 @@ impl fmt::Display for CliError {
                 "{what} exceeds the largest supported capacity {max} (use fewer steps)"
             ),
             CliError::Kernel { source, error } => write!(f, "{source}: {error}"),
+            CliError::Mesh { source, error } => write!(f, "{source}: {error}"),
+            CliError::Eval { source, error } => write!(f, "{source}: {error}"),
             CliError::NonFiniteResult { source } => write!(
                 f,
                 "{source}: a result coordinate is not finite (input too large for the precision)"

@@ -18,6 +18,13 @@
 //! c-net sectors in the §1 order `(1,0) (2,0) (1,1) (2,1) (1,2) (2,2)`, d-net
 //! sectors in the §2 order `00 10 20 30 01 11 21 31 02 12 22 32`, sectors
 //! counter-clockwise; `c0` is optional (fitted by formula (4) when absent).
+//! A whole mesh (`capdiv surface` only; the other commands refuse it):
+//!
+//! ```json
+//! {"kind": "mesh", "vertices": [[x, y, z], ...], "faces": [[i, j, k, ...], ...]}
+//! ```
+//!
+//! 0-based vertex indices, faces counter-clockwise about the outward normal.
 //! Unknown fields are rejected.
 
 use crate::error::CliError;
@@ -38,6 +45,54 @@ pub enum Input {
     Cnet(CnetInput),
     /// An EG d-net: `n` sectors of 12 points, optional `c0` (spec EG.md §2).
     Dnet(DnetInput),
+    /// A whole polygon mesh (`capdiv surface`).
+    Mesh(MeshJson),
+}
+
+/// `{"kind": "mesh", "vertices", "faces"}`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshJson {
+    /// Vertex positions.
+    pub vertices: Vec<P3>,
+    /// Faces: 0-based vertex indices, counter-clockwise.
+    pub faces: Vec<Vec<i64>>,
+}
+
+impl MeshJson {
+    /// The mesh crate's input; an index outside `0..vertices` is
+    /// [`capdiv_mesh::MeshError::IndexOutOfRange`] (first offending face).
+    pub fn to_mesh(&self) -> Result<capdiv_mesh::MeshInput, capdiv_mesh::MeshError> {
+        let nv = self.vertices.len();
+        let mut faces = Vec::with_capacity(self.faces.len());
+        for (face, list) in self.faces.iter().enumerate() {
+            let mut out = Vec::with_capacity(list.len());
+            for &index in list {
+                if index < 0 || index as u64 >= nv as u64 || index > i64::from(u32::MAX) {
+                    return Err(capdiv_mesh::MeshError::IndexOutOfRange {
+                        face,
+                        index,
+                        vertices: nv,
+                    });
+                }
+                out.push(index as u32);
+            }
+            faces.push(out);
+        }
+        Ok(capdiv_mesh::MeshInput::new(self.vertices.clone(), faces))
+    }
+
+    /// The JSON form of a mesh.
+    pub fn of(mesh: &capdiv_mesh::MeshInput) -> Self {
+        MeshJson {
+            vertices: mesh.vertices.clone(),
+            faces: mesh
+                .faces
+                .iter()
+                .map(|f| f.iter().map(|&i| i64::from(i)).collect())
+                .collect(),
+        }
+    }
 }
 
 /// `{"kind": "polar", "pole", "links"}`.
@@ -78,6 +133,7 @@ impl Input {
             Input::Polar(_) => "polar",
             Input::Cnet(_) => "cnet",
             Input::Dnet(_) => "dnet",
+            Input::Mesh(_) => "mesh",
         }
     }
 
@@ -165,8 +221,50 @@ impl Source {
 
     /// Parses the text; syntax errors are [`CliError::MalformedJson`], the rest
     /// (missing or unknown fields, wrong lengths, unknown kind) [`CliError::Schema`].
+    /// A `mesh` is [`CliError::WrongKind`]: the commands that read through
+    /// here take single configurations (`capdiv surface` reads meshes).
     pub fn parse(&self) -> Result<Input, CliError> {
-        parse(&self.name, &self.text)
+        match parse(&self.name, &self.text)? {
+            Input::Mesh(_) => Err(CliError::WrongKind {
+                source: self.name.clone(),
+                kind: "mesh",
+                need: "this command needs a 'polar', 'cnet' or 'dnet' input \
+                       (a whole mesh is for 'capdiv surface')"
+                    .into(),
+            }),
+            input => Ok(input),
+        }
+    }
+
+    /// Reads `path` (`-` = stdin) as bytes; text that is not UTF-8 is an
+    /// error naming the first bad byte's offset.
+    pub fn read_text(path: &str) -> Result<Self, CliError> {
+        let (name, bytes) = if path == "-" {
+            let mut bytes = Vec::new();
+            std::io::stdin()
+                .read_to_end(&mut bytes)
+                .map_err(|e| CliError::Io {
+                    path: "<stdin>".into(),
+                    message: e.to_string(),
+                })?;
+            ("<stdin>".to_string(), bytes)
+        } else {
+            let bytes = std::fs::read(path).map_err(|e| CliError::Io {
+                path: path.to_string(),
+                message: e.to_string(),
+            })?;
+            (path.to_string(), bytes)
+        };
+        match String::from_utf8(bytes) {
+            Ok(text) => Ok(Source { name, text }),
+            Err(e) => Err(CliError::Io {
+                path: name,
+                message: format!(
+                    "not UTF-8 text (invalid byte at offset {})",
+                    e.utf8_error().valid_up_to()
+                ),
+            }),
+        }
     }
 }
 

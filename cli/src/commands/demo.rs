@@ -54,10 +54,7 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
         "total time {:.1} ms",
         start.elapsed().as_secs_f64() * 1e3
     );
-    Ok(Outcome {
-        bytes: text.into_bytes(),
-        sink: Sink::Stdout,
-    })
+    Ok(Outcome::new(text.into_bytes(), Sink::Stdout))
 }
 
 fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {

@@ -4,7 +4,8 @@
 //!
 //! `refine`, `pole` and `patches` dispatch on the input's `kind`: the polar
 //! steps are in [`polar`], the EG ones in [`eg`]; `spectrum` takes no input
-//! net (a valence and optionally a rule table).
+//! net (a valence and optionally a rule table); `surface` takes a whole mesh
+//! (`kind: "mesh"` JSON or Wavefront OBJ) through `capdiv_mesh`.
 
 pub mod demo;
 pub mod eg;
@@ -13,6 +14,7 @@ pub mod polar;
 pub mod pole;
 pub mod refine;
 pub mod spectrum;
+pub mod surface;
 
 use crate::args::Command;
 use crate::error::CliError;
@@ -25,12 +27,31 @@ pub struct Outcome {
     pub bytes: Vec<u8>,
     /// Where to write them.
     pub sink: Sink,
+    /// A human-readable report for stderr, printed after the output has been
+    /// written (empty: nothing is printed). Never starts with `error:`.
+    pub report: String,
 }
 
 impl Outcome {
-    /// Writes the output in one piece.
+    /// An outcome without a report.
+    pub fn new(bytes: Vec<u8>, sink: Sink) -> Self {
+        Outcome {
+            bytes,
+            sink,
+            report: String::new(),
+        }
+    }
+
+    /// Writes the output in one piece, then the report (if any) on stderr.
     pub fn write(&self) -> Result<(), CliError> {
-        self.sink.write(&self.bytes)
+        self.sink.write(&self.bytes)?;
+        if !self.report.is_empty() {
+            use std::io::Write;
+            let mut err = std::io::stderr().lock();
+            let _ = err.write_all(self.report.as_bytes());
+            let _ = err.flush();
+        }
+        Ok(())
     }
 }
 
@@ -41,6 +62,7 @@ pub fn run(command: Command) -> Result<Outcome, CliError> {
         Command::Pole(a) => pole::run(&a),
         Command::Patches(a) => patches::run(&a),
         Command::Spectrum(a) => spectrum::run(&a),
+        Command::Surface(a) => surface::run(&a),
         Command::Demo(a) => demo::run(&a),
     }
 }

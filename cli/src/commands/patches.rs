@@ -130,10 +130,10 @@ pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
             }
         }
     };
-    Ok(Outcome {
+    Ok(Outcome::new(
         bytes,
-        sink: Sink::from_option(args.io.output.clone()),
-    })
+        Sink::from_option(args.io.output.clone()),
+    ))
 }
 
 fn format<R: Scalar, const K: usize>(

@@ -30,10 +30,10 @@ pub fn run(args: &PoleArgs) -> Result<Outcome, CliError> {
         (_, Precision::F64) => to_json(&eg_limit::<f64>(name, &input)?, args.pretty),
         (_, Precision::F32) => to_json(&eg_limit::<f32>(name, &input)?, args.pretty),
     };
-    Ok(Outcome {
+    Ok(Outcome::new(
         bytes,
-        sink: Sink::from_option(args.io.output.clone()),
-    })
+        Sink::from_option(args.io.output.clone()),
+    ))
 }
 
 /// The limit point `c0` of a `cnet` (formula (3)) or `dnet` (given `c0`, else
@@ -42,10 +42,10 @@ pub fn eg_limit<R: Scalar>(name: &str, input: &Input) -> Result<EgPoleOutput<R>,
     let limit = match input {
         Input::Cnet(c) => cnet::<R>(name, c)?.limit(),
         Input::Dnet(d) => dnet_of::<R>(name, d)?.c0(),
-        Input::Polar(_) => {
+        Input::Polar(_) | Input::Mesh(_) => {
             return Err(CliError::WrongKind {
                 source: name.to_string(),
-                kind: "polar",
+                kind: input.kind(),
                 need: "the EG limit point needs a 'cnet' or 'dnet' input".into(),
             })
         }

@@ -49,7 +49,7 @@ pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
     let input = source.parse()?;
     let scheme = args.scheme.unwrap_or(match input {
         Input::Polar(_) => Scheme::C2ps,
-        Input::Cnet(_) | Input::Dnet(_) => Scheme::Eg,
+        Input::Cnet(_) | Input::Dnet(_) | Input::Mesh(_) => Scheme::Eg,
     });
     check_options(args, scheme)?;
     let who = format!("--scheme {}", scheme.name());
@@ -81,10 +81,10 @@ pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
             ),
         }
     };
-    Ok(Outcome {
+    Ok(Outcome::new(
         bytes,
-        sink: Sink::from_option(args.io.output.clone()),
-    })
+        Sink::from_option(args.io.output.clone()),
+    ))
 }
 
 /// The level-`steps` d-net of an EG input (spec EG.md §5, §6; `c0` fixed),

@@ -63,10 +63,10 @@ pub fn run(args: &SpectrumArgs) -> Result<Outcome, CliError> {
         None => "builtin".to_string(),
     };
     let out = spectrum(n, rule.as_ref(), &source)?;
-    Ok(Outcome {
-        bytes: to_json(&out, args.pretty),
-        sink: Sink::from_option(args.output.clone()),
-    })
+    Ok(Outcome::new(
+        to_json(&out, args.pretty),
+        Sink::from_option(args.output.clone()),
+    ))
 }
 
 /// The spectrum of valence `n`'s step: with `rule` when given, else the

@@ -1,0 +1,716 @@
+//! `capdiv surface`: a whole polygon mesh to a smooth surface through
+//! `capdiv_mesh` (issue 7).
+//!
+//! The mesh is Wavefront OBJ or JSON `{"kind": "mesh", "vertices", "faces"}`,
+//! chosen by content ([`looks_like_json`]). It is validated
+//! ([`Topology::new`]), analysed once ([`SurfacePlan::new`]: regular faces,
+//! polar fans, extraordinary points, at most two refinement steps) and
+//! evaluated in the precision asked for ([`Evaluator`]). Output:
+//!
+//! - `json`: `{"patches": [...], "caps": [...], "summary": {...}}` (see
+//!   [`PatchJson`], [`CapJson`], [`Summary`]);
+//! - `obj`: the patches tessellated on a `G×G` grid by
+//!   [`capdiv_mesh::tessellate`] (finer edges sampled twice as finely, each
+//!   cap's last hole closed by a fan to its limit point) and welded with a
+//!   tolerance relative to the input's bounding box ([`weld_tolerance`]), with
+//!   normals; a closed, consistently oriented input gives a closed,
+//!   consistently oriented OBJ (checked, and reported);
+//! - `png`: a shaded preview of that tessellation (colours by level).
+//!
+//! The summary is also printed as one block on stderr (unless `--quiet`),
+//! after the output has been written; exit status 0.
+
+use super::Outcome;
+use crate::args::{PatchFormat, Precision, SurfaceArgs};
+use crate::error::CliError;
+use crate::input::{parse, Input, Source};
+use crate::mesh::Mesh;
+use crate::output::{to_json, Sink};
+use crate::table::Table;
+use crate::Scalar;
+use capdiv::Point3;
+use capdiv_mesh::obj::{looks_like_json, parse_obj};
+use capdiv_mesh::tessellate::{
+    is_closed_and_oriented, tessellate, write_obj, BadEdge, EdgeFault, Face, TessPatch,
+    Tessellation,
+};
+use capdiv_mesh::{
+    CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
+    Topology,
+};
+use serde::Serialize;
+use std::fmt::Write;
+use std::time::Instant;
+
+/// Weld tolerance of `f64` output, relative to the bounding-box size.
+pub const WELD_F64: f64 = 1e-9;
+/// Weld tolerance of `f32` output, relative to the bounding-box size.
+pub const WELD_F32: f64 = 1e-4;
+
+/// Valences that take a user EG table.
+pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
+
+/// Runs the command.
+pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
+    let tables = read_tables(&args.eg_table)?;
+    let source = Source::read_text(&args.file)?;
+    let mesh = read_mesh(&source)?;
+    let name = source.name.as_str();
+    let (bytes, report) = match args.precision {
+        Precision::F64 => produce::<f64>(name, &mesh, &tables, args, "f64", WELD_F64)?,
+        Precision::F32 => produce::<f32>(name, &mesh, &tables, args, "f32", WELD_F32)?,
+    };
+    let mut out = Outcome::new(bytes, Sink::from_option(args.output.clone()));
+    if !args.quiet {
+        out.report = report;
+    }
+    Ok(out)
+}
+
+/// Reads the `--eg-table N=FILE` options: `N` in 6..=10, each once, the file's
+/// valence `N`, the table accepted by the kernel ([`Table::rule`]).
+pub fn read_tables(specs: &[String]) -> Result<Vec<Table>, CliError> {
+    let mut tables: Vec<Table> = Vec::new();
+    for spec in specs {
+        let bad = || {
+            CliError::Usage(format!(
+                "--eg-table expects N=FILE with N in 6..10, got '{spec}'"
+            ))
+        };
+        let (n, file) = spec.split_once('=').ok_or_else(bad)?;
+        let n: usize = n.trim().parse().map_err(|_| bad())?;
+        if !TABLE_VALENCES.contains(&n) || file.is_empty() {
+            return Err(bad());
+        }
+        if tables.iter().any(|t| t.valence == n) {
+            return Err(CliError::Usage(format!(
+                "--eg-table gives valence {n} more than once"
+            )));
+        }
+        let table = Table::read(file)?;
+        if table.valence != n {
+            return Err(CliError::Usage(format!(
+                "{}: the rule table is for valence {}, --eg-table names valence {n}",
+                table.name, table.valence
+            )));
+        }
+        table.rule()?;
+        tables.push(table);
+    }
+    Ok(tables)
+}
+
+/// The mesh of a source: JSON (`kind: "mesh"`) when it looks like JSON, OBJ
+/// otherwise.
+pub fn read_mesh(source: &Source) -> Result<MeshInput, CliError> {
+    let mesh_err = |error| CliError::Mesh {
+        source: source.name.clone(),
+        error,
+    };
+    if looks_like_json(&source.text) {
+        match parse(&source.name, &source.text)? {
+            Input::Mesh(m) => m.to_mesh().map_err(mesh_err),
+            other => Err(CliError::WrongKind {
+                source: source.name.clone(),
+                kind: other.kind(),
+                need: "surface needs a 'mesh' input (or a Wavefront OBJ)".into(),
+            }),
+        }
+    } else {
+        parse_obj(&source.text).map_err(mesh_err)
+    }
+}
+
+fn produce<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    tables: &[Table],
+    args: &SurfaceArgs,
+    precision: &str,
+    weld: f64,
+) -> Result<(Vec<u8>, String), CliError> {
+    let surface = build::<R>(name, mesh, args.depth, tables, precision)?;
+    let grid = args.grid as usize;
+    Ok(match args.format {
+        PatchFormat::Json => {
+            let out = SurfaceJson {
+                patches: surface.patches.iter().map(PatchJson::new).collect(),
+                caps: surface.caps.iter().map(CapJson::new).collect(),
+                summary: &surface.summary,
+            };
+            let report = report(name, &surface.summary, None);
+            (to_json(&out, args.pretty), report)
+        }
+        PatchFormat::Obj | PatchFormat::Png => {
+            let tess = tessellate_surface(&surface, mesh, grid, weld);
+            let report = report(name, &surface.summary, Some(&tess.info));
+            let bytes = if args.format == PatchFormat::Obj {
+                let title = format!(
+                    "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
+                    args.depth
+                );
+                obj_text(&tess, &surface.summary, &title).into_bytes()
+            } else {
+                super::patches::png_bytes(&render_mesh(&tess.mesh))?
+            };
+            (bytes, report)
+        }
+    })
+}
+
+/// A surface: every patch and cap the evaluator gave, and the summary.
+#[derive(Clone, Debug)]
+pub struct Surface<R> {
+    /// Patches in the evaluator's order (regular faces, then cap by cap).
+    pub patches: Vec<PatchRecord<R>>,
+    /// Caps in the evaluator's order (polar first, then EG / Catmull-Clark).
+    pub caps: Vec<CapRecord<R>>,
+    /// Counts, reasons, times.
+    pub summary: Summary,
+}
+
+struct Collect<R> {
+    patches: Vec<PatchRecord<R>>,
+    caps: Vec<CapRecord<R>>,
+}
+
+impl<R: Clone> SurfaceSink<R> for Collect<R> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.patches.push(p.clone());
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.caps.push(c.clone());
+    }
+}
+
+/// Validates, analyses and evaluates `mesh` in `R` (positions cast).
+pub fn build<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    depth: u32,
+    tables: &[Table],
+    precision: &str,
+) -> Result<Surface<R>, CliError> {
+    let mesh_err = |error| CliError::Mesh {
+        source: name.to_string(),
+        error,
+    };
+    let eval_err = |error| CliError::Eval {
+        source: name.to_string(),
+        error,
+    };
+    let start = Instant::now();
+    let topo = Topology::new(mesh).map_err(mesh_err)?;
+    let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
+    let plan = SurfacePlan::new(&topo, PlanOptions { depth, eg_tables }).map_err(mesh_err)?;
+    let analysis = start.elapsed();
+
+    let start = Instant::now();
+    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
+    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
+    let mut sink = Collect {
+        patches: Vec::new(),
+        caps: Vec::new(),
+    };
+    evaluator
+        .evaluate(&plan, &positions, &mut sink)
+        .map_err(eval_err)?;
+    let evaluation = start.elapsed();
+
+    let finite = sink
+        .patches
+        .iter()
+        .all(|p| geometry_points(p).all(|q| q.is_finite()))
+        && sink.caps.iter().all(|c| c.limit.is_finite());
+    if !finite {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+
+    let mut patches = PatchCounts::default();
+    for p in &sink.patches {
+        match p.kind {
+            PatchKind::Regular => patches.regular += 1,
+            PatchKind::Polar => patches.polar += 1,
+            PatchKind::Eg => patches.eg += 1,
+            PatchKind::CatmullClark => patches.catmull_clark += 1,
+        }
+        patches.total += 1;
+    }
+    let mut caps: Vec<CapCount> = Vec::new();
+    for c in &sink.caps {
+        let (scheme, valence) = (c.scheme.id(), c.valence);
+        match caps
+            .iter_mut()
+            .find(|k| k.scheme == scheme && k.valence == valence)
+        {
+            Some(k) => k.count += 1,
+            None => caps.push(CapCount {
+                scheme,
+                valence,
+                count: 1,
+            }),
+        }
+    }
+    caps.sort_by_key(|k| (k.scheme, k.valence));
+    let reasons = |list: &[capdiv_mesh::plan::UncoveredFace]| {
+        list.iter()
+            .map(|u| FaceReason {
+                face: u.face,
+                reason: u.reason.id(),
+                description: u.reason.describe(),
+            })
+            .collect()
+    };
+    let summary = Summary {
+        input: InputSummary {
+            vertices: plan.input_vertices,
+            faces: plan.input_faces,
+            closed: topo.is_closed(),
+        },
+        depth,
+        precision: precision.to_string(),
+        patches,
+        caps,
+        refinement_steps: plan.steps.len(),
+        needed_refinement: reasons(&plan.needed_refinement),
+        uncovered: reasons(&plan.uncovered),
+        times_ms: Times {
+            analysis: analysis.as_secs_f64() * 1e3,
+            evaluation: evaluation.as_secs_f64() * 1e3,
+        },
+    };
+    Ok(Surface {
+        patches: sink.patches,
+        caps: sink.caps,
+        summary,
+    })
+}
+
+/// All control points of a patch (either degree).
+fn geometry_points<R: Scalar>(p: &PatchRecord<R>) -> Box<dyn Iterator<Item = Point3<R>> + '_> {
+    use capdiv_mesh::tessellate::PatchGeometry;
+    match &p.geometry {
+        PatchGeometry::Cubic(t) => Box::new(t.points.iter().flatten().copied()),
+        PatchGeometry::Quartic(t) => Box::new(t.points.iter().flatten().copied()),
+    }
+}
+
+/// `{"patches", "caps", "summary"}`.
+#[derive(Serialize)]
+struct SurfaceJson<'a, R> {
+    patches: Vec<PatchJson<R>>,
+    caps: Vec<CapJson<R>>,
+    summary: &'a Summary,
+}
+
+/// One patch as printed.
+#[derive(Clone, Debug, Serialize)]
+pub struct PatchJson<R> {
+    /// `regular`, `polar`, `eg` or `catmull-clark`.
+    pub kind: &'static str,
+    /// 3 (bicubic) or 4 (bi-quartic, EG).
+    pub degree: usize,
+    /// The patch is `2^-level` of its input face across.
+    pub level: u32,
+    /// The input face it lies in.
+    pub face: u32,
+    /// Non-quad faces: the corner whose sub-quad holds the patch.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub corner: Option<u8>,
+    /// `[u0, u1, v0, v1]` in the face's (or sub-quad's) square.
+    pub domain: [f64; 4],
+    /// `(d+1)²` points, `points[(d+1)·j + i]` = `b_ij`, `i` along `u`.
+    pub points: Vec<[R; 3]>,
+}
+
+impl<R: Scalar> PatchJson<R> {
+    /// From an evaluator record.
+    pub fn new(p: &PatchRecord<R>) -> Self {
+        use capdiv_mesh::tessellate::PatchGeometry;
+        fn by_rows<R: Copy, const K: usize>(pts: &[[Point3<R>; K]; K]) -> Vec<[R; 3]> {
+            (0..K)
+                .flat_map(|j| (0..K).map(move |i| pts[i][j].0))
+                .collect()
+        }
+        let (degree, points) = match &p.geometry {
+            PatchGeometry::Cubic(t) => (3, by_rows(&t.points)),
+            PatchGeometry::Quartic(t) => (4, by_rows(&t.points)),
+        };
+        PatchJson {
+            kind: p.kind.id(),
+            degree,
+            level: p.level,
+            face: p.face,
+            corner: p.corner,
+            domain: p.domain,
+            points,
+        }
+    }
+}
+
+/// One cap as printed.
+#[derive(Clone, Debug, Serialize)]
+pub struct CapJson<R> {
+    /// The input vertex at its centre (`null` for a face centre).
+    pub vertex: Option<u32>,
+    /// The input face whose centre it is (only when `vertex` is `null`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub face: Option<u32>,
+    /// `c2ps`, `eg` or `catmull-clark`.
+    pub scheme: &'static str,
+    /// Valence in the input.
+    pub valence: usize,
+    /// Limit point.
+    pub limit: [R; 3],
+    /// Unit normal, `null` if degenerate.
+    pub normal: Option<[R; 3]>,
+    /// C²PS only: principal curvatures, else `null`.
+    pub principal_curvatures: Option<[R; 2]>,
+}
+
+impl<R: Scalar> CapJson<R> {
+    /// From an evaluator record.
+    pub fn new(c: &CapRecord<R>) -> Self {
+        CapJson {
+            vertex: c.vertex,
+            face: if c.vertex.is_none() { c.face } else { None },
+            scheme: c.scheme.id(),
+            valence: c.valence,
+            limit: c.limit.0,
+            normal: c.normal.filter(|n| n.is_finite()).map(|n| n.0),
+            principal_curvatures: c
+                .principal_curvatures
+                .filter(|k| k.iter().all(|v| v.is_finite())),
+        }
+    }
+}
+
+/// The summary (JSON `summary`, and the stderr block).
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    /// Counts of the input.
+    pub input: InputSummary,
+    /// `--depth`.
+    pub depth: u32,
+    /// `f64` or `f32`.
+    pub precision: String,
+    /// Patches per kind.
+    pub patches: PatchCounts,
+    /// Caps per scheme and valence.
+    pub caps: Vec<CapCount>,
+    /// Global refinement steps taken (0..=2).
+    pub refinement_steps: usize,
+    /// Input faces that made the first refinement step necessary.
+    pub needed_refinement: Vec<FaceReason>,
+    /// Input faces left without a patch.
+    pub uncovered: Vec<FaceReason>,
+    /// Wall-clock times (vary from run to run).
+    pub times_ms: Times,
+}
+
+/// Input counts.
+#[derive(Clone, Debug, Serialize)]
+pub struct InputSummary {
+    /// Vertices.
+    pub vertices: usize,
+    /// Faces.
+    pub faces: usize,
+    /// Whether the input has no boundary edge.
+    pub closed: bool,
+}
+
+/// Patches per kind.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct PatchCounts {
+    /// B-spline patches of regular faces.
+    pub regular: usize,
+    /// C²PS ring patches.
+    pub polar: usize,
+    /// EG ring patches.
+    pub eg: usize,
+    /// Catmull-Clark ring patches.
+    #[serde(rename = "catmull-clark")]
+    pub catmull_clark: usize,
+    /// All.
+    pub total: usize,
+}
+
+/// Caps of one scheme and valence.
+#[derive(Clone, Debug, Serialize)]
+pub struct CapCount {
+    /// Scheme id.
+    pub scheme: &'static str,
+    /// Valence in the input.
+    pub valence: usize,
+    /// How many.
+    pub count: usize,
+}
+
+/// An input face with a reason.
+#[derive(Clone, Debug, Serialize)]
+pub struct FaceReason {
+    /// The input face.
+    pub face: u32,
+    /// Reason id.
+    pub reason: &'static str,
+    /// In words.
+    pub description: &'static str,
+}
+
+/// Times in milliseconds.
+#[derive(Clone, Debug, Serialize)]
+pub struct Times {
+    /// Topology, plan (with refinement).
+    pub analysis: f64,
+    /// Evaluation of every patch and cap.
+    pub evaluation: f64,
+}
+
+/// The weld tolerance: `factor ×` the largest side of the input's bounding
+/// box (0 for an empty or degenerate box).
+pub fn weld_tolerance(mesh: &MeshInput, factor: f64) -> (f64, f64) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f64, f64::max);
+    let size = if size.is_finite() { size } else { 0.0 };
+    (factor * size, size)
+}
+
+/// What the tessellation gave.
+#[derive(Clone, Debug)]
+pub struct TessInfo {
+    /// Grid segments per patch side.
+    pub grid: usize,
+    /// Weld tolerance used (absolute).
+    pub tolerance: f64,
+    /// Its factor and the bounding-box size.
+    pub factor: f64,
+    /// Bounding-box size of the input.
+    pub size: f64,
+    /// Welded vertices.
+    pub vertices: usize,
+    /// Triangles.
+    pub triangles: usize,
+    /// Quads.
+    pub quads: usize,
+    /// Faces dropped by welding.
+    pub degenerate_dropped: usize,
+    /// The closedness check.
+    pub closed: Result<(), BadEdge>,
+    /// Milliseconds.
+    pub time_ms: f64,
+}
+
+/// A tessellated surface.
+pub struct Tess<R> {
+    /// The welded mesh.
+    pub mesh: Tessellation<R>,
+    /// Counts and the closedness check.
+    pub info: TessInfo,
+}
+
+/// Tessellates and welds the surface's patches (see the module doc).
+pub fn tessellate_surface<R: Scalar>(
+    surface: &Surface<R>,
+    mesh: &MeshInput,
+    grid: usize,
+    factor: f64,
+) -> Tess<R> {
+    let start = Instant::now();
+    let (tolerance, size) = weld_tolerance(mesh, factor);
+    let patches = surface.patches.iter().map(|p| TessPatch {
+        geometry: p.geometry,
+        finer: p.finer,
+        hole: p.hole,
+        hole_point: p.hole_point,
+        tag: p.level,
+    });
+    let t = tessellate(patches, grid, R::from_f64(tolerance));
+    let triangles = t.faces.iter().filter(|f| matches!(f, Face::Tri(_))).count();
+    let info = TessInfo {
+        grid,
+        tolerance,
+        factor,
+        size,
+        vertices: t.positions.len(),
+        triangles,
+        quads: t.faces.len() - triangles,
+        degenerate_dropped: t.degenerate_dropped,
+        closed: is_closed_and_oriented(&t.faces),
+        time_ms: start.elapsed().as_secs_f64() * 1e3,
+    };
+    Tess { mesh: t, info }
+}
+
+/// The closedness check in words.
+pub fn closed_text(closed: &Result<(), BadEdge>) -> String {
+    match closed {
+        Ok(()) => "closed and consistently oriented".into(),
+        Err(b) => {
+            let what = match b.fault {
+                EdgeFault::Degenerate => "degenerate",
+                EdgeFault::Unpaired => "used by one face only",
+                EdgeFault::SameDirection => "used twice in the same direction",
+                EdgeFault::Overused => "used by more than two faces",
+            };
+            format!(
+                "not closed: edge {}-{} (1-based OBJ vertices {}-{}) of face {} is {what}",
+                b.from,
+                b.to,
+                b.from as u64 + 1,
+                b.to as u64 + 1,
+                b.face
+            )
+        }
+    }
+}
+
+/// OBJ text with a header describing the surface.
+pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> String {
+    let i = &tess.info;
+    let header = [
+        title.to_string(),
+        format!(
+            "{} patches ({} regular, {} polar, {} eg, {} catmull-clark), {} caps",
+            summary.patches.total,
+            summary.patches.regular,
+            summary.patches.polar,
+            summary.patches.eg,
+            summary.patches.catmull_clark,
+            summary.caps.iter().map(|c| c.count).sum::<usize>()
+        ),
+        format!(
+            "grid {}x{} per patch; welded within {:e} ({:e} x bounding-box size {})",
+            i.grid, i.grid, i.tolerance, i.factor, i.size
+        ),
+        format!(
+            "{} vertices, {} faces ({} triangles, {} quads); {}",
+            i.vertices,
+            i.triangles + i.quads,
+            i.triangles,
+            i.quads,
+            closed_text(&i.closed)
+        ),
+    ];
+    write_obj(&tess.mesh, &header)
+}
+
+/// The tessellation as the renderer's mesh: triangles as quads with a
+/// repeated last corner (the renderer skips the empty half), no patch
+/// parameters (no boundary lines), tags = levels.
+pub fn render_mesh<R: Scalar>(t: &Tessellation<R>) -> Mesh<R> {
+    Mesh {
+        positions: t.positions.clone(),
+        normals: t.normals.clone(),
+        uv: vec![[0.5; 2]; t.positions.len()],
+        quads: t
+            .faces
+            .iter()
+            .map(|f| match *f {
+                Face::Tri([a, b, c]) => [a, b, c, c].map(|i| i as usize),
+                Face::Quad(q) => q.map(|i| i as usize),
+            })
+            .collect(),
+        tags: t.tags.clone(),
+    }
+}
+
+/// The human-readable summary block (stderr).
+pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "capdiv surface: {name}: {} vertices, {} faces ({}); depth {}, {}",
+        s.input.vertices,
+        s.input.faces,
+        if s.input.closed { "closed" } else { "open" },
+        s.depth,
+        s.precision
+    );
+    let p = &s.patches;
+    let _ = writeln!(
+        t,
+        "  patches      {} ({} regular, {} polar, {} eg, {} catmull-clark)",
+        p.total, p.regular, p.polar, p.eg, p.catmull_clark
+    );
+    let caps: Vec<String> = s
+        .caps
+        .iter()
+        .map(|c| format!("{} x{} n={}", c.scheme, c.count, c.valence))
+        .collect();
+    let _ = writeln!(
+        t,
+        "  caps         {}",
+        if caps.is_empty() {
+            "none".to_string()
+        } else {
+            caps.join(", ")
+        }
+    );
+    let _ = writeln!(
+        t,
+        "  refinement   {} step(s){}",
+        s.refinement_steps,
+        faces_by_reason(&s.needed_refinement, " needed by")
+    );
+    let _ = writeln!(
+        t,
+        "  uncovered    {}{}",
+        s.uncovered.len(),
+        faces_by_reason(&s.uncovered, ":")
+    );
+    if let Some(i) = tess {
+        let _ = writeln!(
+            t,
+            "  tessellation {} vertices, {} triangles, {} quads (grid {}, weld {:e}); {}",
+            i.vertices,
+            i.triangles,
+            i.quads,
+            i.grid,
+            i.tolerance,
+            closed_text(&i.closed)
+        );
+    }
+    let _ = write!(
+        t,
+        "  time         analysis {:.1} ms, evaluation {:.1} ms",
+        s.times_ms.analysis, s.times_ms.evaluation
+    );
+    if let Some(i) = tess {
+        let _ = write!(t, ", tessellation {:.1} ms", i.time_ms);
+    }
+    t.push('\n');
+    t
+}
+
+/// ` needed by N faces (reason: faces …; …)`, faces listed up to 8 a reason.
+fn faces_by_reason(list: &[FaceReason], lead: &str) -> String {
+    if list.is_empty() {
+        return String::new();
+    }
+    let mut ids: Vec<&str> = list.iter().map(|f| f.reason).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let parts: Vec<String> = ids
+        .iter()
+        .map(|id| {
+            let faces: Vec<u32> = list
+                .iter()
+                .filter(|f| f.reason == *id)
+                .map(|f| f.face)
+                .collect();
+            let shown: Vec<String> = faces.iter().take(8).map(|f| f.to_string()).collect();
+            let more = if faces.len() > 8 { ", …" } else { "" };
+            format!("{id}: faces {}{more}", shown.join(", "))
+        })
+        .collect();
+    format!("{lead} {} input face(s) ({})", list.len(), parts.join("; "))
+}
