@@ -569,6 +569,7 @@ fn map_edges(map: &Affine, bits: u8) -> u8 {
 }
 
 /// A patch given over `rect` of a face-local frame, placed through `chart`.
+#[inline]
 #[allow(clippy::too_many_arguments)]
 fn record<R: Real, const K: usize>(
     kind: PatchKind,
@@ -585,16 +586,28 @@ where
     TensorPatch<R, K>: IntoGeometry<R>,
 {
     let map = &chart.map;
-    let points = map.orient(&patch.points);
+    // Most faces are input faces in their own frame: nothing to re-express.
+    let identity = *map == Affine::IDENTITY;
     PatchRecord {
         kind,
         level,
         face: chart.face,
         corner: chart.corner,
-        domain: map.rect(rect),
-        geometry: TensorPatch { points }.into_geometry(),
-        finer: map_edges(map, finer),
-        hole: map_edges(map, hole),
+        domain: if identity { rect } else { map.rect(rect) },
+        geometry: if identity {
+            patch.into_geometry()
+        } else {
+            TensorPatch {
+                points: map.orient(&patch.points),
+            }
+            .into_geometry()
+        },
+        finer: if identity {
+            finer
+        } else {
+            map_edges(map, finer)
+        },
+        hole: if identity { hole } else { map_edges(map, hole) },
         hole_point,
         cap,
     }
