@@ -133,13 +133,20 @@ pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
 /// Fills missing border entries by mirroring (`2·near − far` along a row or
 /// column), repeatedly, so that corners are mirrored twice. `None` if some
 /// entry cannot be filled.
+///
+/// Each pass reads only entries known before it (a snapshot): an entry beside
+/// an edge is the mirror of its own row or column's real points (`2b − i`
+/// across the edge), never an extrapolation along a row of phantoms filled
+/// in the same pass (which differs unless the grid is affine, and is not
+/// what the neighbouring face computes for the same point).
 fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
     loop {
         let mut changed = false;
         let mut missing = false;
+        let known = g.clone();
         for i in 0..4 {
             for j in 0..4 {
-                if g[i][j].is_some() {
+                if known[i][j].is_some() {
                     continue;
                 }
                 let pairs = [
@@ -150,7 +157,7 @@ fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
                 ];
                 let mut filled = None;
                 for ((ni, nj), (fi, fj)) in pairs.into_iter().flatten() {
-                    if let (Some(near), Some(far)) = (&g[ni][nj], &g[fi][fj]) {
+                    if let (Some(near), Some(far)) = (&known[ni][nj], &known[fi][fj]) {
                         let mut c: Combo = near.iter().map(|&(v, w)| (v, 2.0 * w)).collect();
                         c.extend(far.iter().map(|&(v, w)| (v, -w)));
                         filled = Some(c);
@@ -230,6 +237,25 @@ mod tests {
                 });
                 assert_eq!(p, [i as f64 - 1.0, j as f64 - 1.0]);
             }
+        }
+    }
+
+    #[test]
+    fn edge_phantoms_mirror_their_own_column() {
+        // Bottom face (1, 0) of a 4×4 grid: every entry of the phantom row
+        // j = 0 is 2·(its column's boundary vertex) − (the vertex above), in
+        // particular the last one, which a row-wise extrapolation of phantoms
+        // filled first would get wrong on a non-affine grid.
+        let m = grid_mesh(4, 4);
+        let t = Topology::new(&m).unwrap();
+        let g = face_grid(&t, 1).unwrap();
+        let v = |a: usize, b: usize| (a + 5 * b) as u32;
+        for (i, column) in g.iter().enumerate() {
+            assert_eq!(
+                column[0],
+                alloc::vec![(v(i, 0), 2.0), (v(i, 1), -1.0)],
+                "i={i}"
+            );
         }
     }
 
