@@ -112,3 +112,158 @@ pub fn bspline_basis(t: f64) -> [f64; 4] {
         t * t * t / 6.0,
     ]
 }
+
+// ---------------------------------------------------------------------------
+// Surface collection and evaluation helpers (mesh/tests/surface_*.rs).
+
+use capdiv_mesh::tessellate::PatchGeometry;
+use capdiv_mesh::{
+    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology,
+};
+
+/// A sink that keeps every patch and cap.
+#[derive(Default)]
+pub struct Collect<R> {
+    pub patches: Vec<PatchRecord<R>>,
+    pub caps: Vec<CapRecord<R>>,
+}
+
+impl<R: Clone> SurfaceSink<R> for Collect<R> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.patches.push(p.clone());
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.caps.push(c.clone());
+    }
+}
+
+/// Plan (at `depth`) and evaluate a mesh in f64.
+pub fn surface(mesh: &MeshInput, depth: u32) -> (SurfacePlan<'static>, Collect<f64>) {
+    let t = Topology::new(mesh).expect("valid mesh");
+    let plan = SurfacePlan::new(
+        &t,
+        PlanOptions {
+            depth,
+            ..Default::default()
+        },
+    )
+    .expect("plan");
+    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+    let mut c = Collect::default();
+    ev.evaluate(&plan, &mesh.vertices, &mut c)
+        .expect("evaluate");
+    (plan, c)
+}
+
+/// The Bézier control grid of a patch as plain f64 rows (`[i][j]`, `i` along u).
+pub fn control_grid(g: &PatchGeometry<f64>) -> Vec<Vec<[f64; 3]>> {
+    match g {
+        PatchGeometry::Cubic(p) => p
+            .points
+            .iter()
+            .map(|r| r.iter().map(|q| q.0).collect())
+            .collect(),
+        PatchGeometry::Quartic(p) => p
+            .points
+            .iter()
+            .map(|r| r.iter().map(|q| q.0).collect())
+            .collect(),
+    }
+}
+
+/// Same for an f32 patch, widened.
+pub fn control_grid32(g: &PatchGeometry<f32>) -> Vec<Vec<[f64; 3]>> {
+    let w = |q: &capdiv::Point3<f32>| [q.0[0] as f64, q.0[1] as f64, q.0[2] as f64];
+    match g {
+        PatchGeometry::Cubic(p) => p.points.iter().map(|r| r.iter().map(w).collect()).collect(),
+        PatchGeometry::Quartic(p) => p.points.iter().map(|r| r.iter().map(w).collect()).collect(),
+    }
+}
+
+/// A Bézier control grid seen under the 8 symmetries of the square
+/// (transposition and reversals): every way the same patch can be stored.
+pub fn orientations(g: &[Vec<[f64; 3]>]) -> Vec<Vec<Vec<[f64; 3]>>> {
+    let k = g.len();
+    let mut out = Vec::new();
+    for swap in [false, true] {
+        for ri in [false, true] {
+            for rj in [false, true] {
+                let mut h = vec![vec![[0.0; 3]; k]; k];
+                for (i, row) in h.iter_mut().enumerate() {
+                    for (j, p) in row.iter_mut().enumerate() {
+                        let a = if ri { k - 1 - i } else { i };
+                        let b = if rj { k - 1 - j } else { j };
+                        *p = if swap { g[b][a] } else { g[a][b] };
+                    }
+                }
+                out.push(h);
+            }
+        }
+    }
+    out
+}
+
+/// Largest distance between corresponding control points (∞ on a size
+/// mismatch).
+pub fn grid_distance(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>]) -> f64 {
+    if a.len() != b.len() {
+        return f64::INFINITY;
+    }
+    a.iter()
+        .zip(b)
+        .flat_map(|(r, s)| r.iter().zip(s).map(|(p, q)| dist(*p, *q)))
+        .fold(0.0, f64::max)
+}
+
+/// Centroid of a control grid (the same under every orientation).
+pub fn grid_centroid(g: &[Vec<[f64; 3]>]) -> [f64; 3] {
+    let mut c = [0.0; 3];
+    let mut k = 0.0;
+    for p in g.iter().flatten() {
+        for a in 0..3 {
+            c[a] += p[a];
+        }
+        k += 1.0;
+    }
+    [c[0] / k, c[1] / k, c[2] / k]
+}
+
+/// Matches two lists of patches as sets, up to orientation: for each patch of
+/// `want`, the closest patch of `got` (by centroid, then the best of its 8
+/// orientations). Returns the worst control-point distance; panics if the
+/// sizes differ. Each `got` patch is used at most once.
+pub fn match_patch_sets(want: &[Vec<Vec<[f64; 3]>>], got: &[Vec<Vec<[f64; 3]>>]) -> f64 {
+    assert_eq!(want.len(), got.len(), "patch counts differ");
+    let centroids: Vec<[f64; 3]> = got.iter().map(|g| grid_centroid(g)).collect();
+    let mut used = vec![false; got.len()];
+    let mut worst = 0.0f64;
+    for w in want {
+        let c = grid_centroid(w);
+        // Candidates: the few closest centroids not yet used.
+        let mut order: Vec<usize> = (0..got.len()).filter(|&i| !used[i]).collect();
+        order.sort_by(|&a, &b| dist(centroids[a], c).total_cmp(&dist(centroids[b], c)));
+        let mut best = (f64::INFINITY, usize::MAX);
+        for &i in order.iter().take(4) {
+            for o in orientations(&got[i]) {
+                let d = grid_distance(w, &o);
+                if d < best.0 {
+                    best = (d, i);
+                }
+            }
+        }
+        used[best.1] = true;
+        worst = worst.max(best.0);
+    }
+    worst
+}
+
+/// Number of faces around each vertex of a mesh.
+pub fn face_counts(m: &MeshInput) -> Vec<usize> {
+    let mut c = vec![0; m.vertices.len()];
+    for f in &m.faces {
+        for &v in f {
+            c[v as usize] += 1;
+        }
+    }
+    c
+}
