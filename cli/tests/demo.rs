@@ -7,6 +7,18 @@ use common::*;
 
 const SAMPLES: [&str; 5] = ["paraboloid", "saddle", "sphere-n48", "eg-n3", "eg-n5"];
 
+/// Whole-mesh samples and the caps their summaries must list.
+const MESHES: [(&str, &[&str]); 6] = [
+    ("globe", &["c2ps x2 n=8"]),
+    ("mushroom", &["c2ps x2 n=12"]),
+    ("hand", &["c2ps x5 n=8", "c2ps x1 n=26", "eg x16 n=5"]),
+    ("rounded-cube", &["eg x8 n=3"]),
+    ("cube", &["eg x8 n=3"]),
+    ("two-beam-corner", &["eg x10 n=3", "eg x2 n=5"]),
+];
+
+const MESH_FILES: usize = 4 * MESHES.len();
+
 #[test]
 fn demo_writes_its_files_and_summary() {
     let dir = tempdir();
@@ -27,7 +39,7 @@ fn demo_writes_its_files_and_summary() {
         assert!(text.contains(label), "summary lacks {label}");
     }
 
-    // Exactly the 15 files, no temporary file left behind.
+    // Exactly the 15 + 24 files, no temporary file left behind.
     let mut files: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().into_string().unwrap())
@@ -36,6 +48,14 @@ fn demo_writes_its_files_and_summary() {
     let mut want: Vec<String> = SAMPLES
         .iter()
         .flat_map(|n| [format!("{n}.json"), format!("{n}.obj"), format!("{n}.png")])
+        .chain(MESHES.iter().flat_map(|(n, _)| {
+            [
+                format!("{n}.json"),
+                format!("{n}.obj"),
+                format!("{n}.png"),
+                format!("{n}.summary.json"),
+            ]
+        }))
         .collect();
     want.sort();
     assert_eq!(files, want);
@@ -112,7 +132,65 @@ fn demo_writes_its_files_and_summary() {
     // A second run replaces the files in place.
     let again = capdiv(&["demo", "--out", s(&out)], None);
     again.assert_ok();
-    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 15);
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 15 + MESH_FILES);
+}
+
+#[test]
+fn demo_meshes_are_closed_surfaces() {
+    let dir = tempdir();
+    let out = dir.path().join("out");
+    let run = capdiv(&["demo", "--out", s(&out)], None);
+    run.assert_ok();
+    let text = run.stdout_str();
+    for (name, caps) in MESHES {
+        let section = &text[text
+            .find(&format!("\n{name}: "))
+            .unwrap_or_else(|| panic!("summary lacks {name}"))..];
+        let section = &section[..section[1..].find("\n\n").unwrap_or(section.len() - 1) + 1];
+        for cap in caps {
+            assert!(section.contains(cap), "{name}: lacks {cap}: {section}");
+        }
+        assert!(
+            section.contains("closed and consistently oriented"),
+            "{name}: {section}"
+        );
+        // The OBJ: every edge used once in each direction; Euler 2.
+        let obj = parse_obj(&std::fs::read_to_string(out.join(format!("{name}.obj"))).unwrap());
+        let mut directed = std::collections::HashMap::new();
+        for f in &obj.f {
+            for k in 0..f.len() {
+                *directed
+                    .entry((f[k].0, f[(k + 1) % f.len()].0))
+                    .or_insert(0) += 1;
+            }
+        }
+        for (&(a, b), &n) in &directed {
+            assert_eq!(n, 1, "{name}: edge {a}->{b}");
+            assert_eq!(directed.get(&(b, a)), Some(&1), "{name}: edge {a}->{b}");
+        }
+        let euler = obj.v.len() as i64 - (directed.len() / 2) as i64 + obj.f.len() as i64;
+        assert_eq!(euler, 2, "{name}");
+        // PNG decodes; the JSON is a mesh input of `capdiv surface`; the
+        // summary JSON agrees with a fresh run's.
+        let (w, h, _) = decode_png(&std::fs::read(out.join(format!("{name}.png"))).unwrap());
+        assert_eq!((w, h), (800, 600));
+        let json = out.join(format!("{name}.json"));
+        let mut fresh = capdiv(&["surface", "--quiet", "--depth", "4", s(&json)], None).ok_json();
+        let mut saved: serde_json::Value = serde_json::from_slice(
+            &std::fs::read(out.join(format!("{name}.summary.json"))).unwrap(),
+        )
+        .unwrap();
+        fresh["summary"].as_object_mut().unwrap().remove("times_ms");
+        saved.as_object_mut().unwrap().remove("times_ms");
+        assert_eq!(fresh["summary"], saved, "{name}");
+    }
+    // The plain cube needed the refinement step, the rounded one did not.
+    let summary = |n: &str| -> serde_json::Value {
+        serde_json::from_slice(&std::fs::read(out.join(format!("{n}.summary.json"))).unwrap())
+            .unwrap()
+    };
+    assert_eq!(summary("cube")["refinement_steps"], 1);
+    assert_eq!(summary("rounded-cube")["refinement_steps"], 0);
 }
 
 #[test]

@@ -7,6 +7,12 @@
 //! (C²PS: curvature at the pole against the sampled surface's; EG: `c0` by
 //! (3) and how close the last ring has come to it), patch counts, time taken.
 //!
+//! Then whole meshes from [`capdiv_mesh::samples`] through `capdiv surface`'s
+//! pipeline ([`super::surface`], depth [`MESH_DEPTH`], grid [`MESH_GRID`]):
+//! `<name>.obj` (welded, closed), `<name>.png`, `<name>.json` (the mesh as a
+//! `kind: "mesh"` input) and `<name>.summary.json` (the summary `surface`
+//! prints), and a line per mesh: caps, patches, refinement, closedness.
+//!
 //! Each file is written atomically; the summary is printed once all samples
 //! have succeeded.
 
@@ -19,12 +25,55 @@ use crate::input::EgInput;
 use crate::output::{to_json, write_atomic, Sink};
 use crate::samples::{demo_samples, eg_samples, EgSample, Sample};
 use capdiv::FirstStep;
+use capdiv_mesh::{samples, MeshInput};
 use std::fmt::Write;
 use std::path::Path;
 use std::time::Instant;
 
 /// Grid segments per patch side in the demo's OBJ files.
 pub const DEMO_GRID: usize = 4;
+
+/// Rings every cap of the whole-mesh samples emits.
+pub const MESH_DEPTH: u32 = 4;
+
+/// Grid segments per patch side of the whole-mesh samples.
+pub const MESH_GRID: usize = 3;
+
+/// The whole-mesh samples: name, description, mesh.
+pub fn mesh_samples() -> Vec<(&'static str, &'static str, MeshInput)> {
+    vec![
+        (
+            "globe",
+            "unit sphere as a latitude-longitude grid, two poles of valence 8",
+            samples::globe(8, 9),
+        ),
+        (
+            "mushroom",
+            "surface of revolution, poles of valence 12 at the cap and the foot",
+            samples::mushroom(),
+        ),
+        (
+            "hand",
+            "palm, four fingers and a thumb with polar finger tips (n = 8), wrist pole n = 26",
+            samples::hand(),
+        ),
+        (
+            "rounded-cube",
+            "cube of 3x3 grids bulged towards a sphere: eight valence-3 points",
+            samples::rounded_cube(3),
+        ),
+        (
+            "cube",
+            "the plain cube: valence-3 neighbours, needs the refinement step",
+            samples::cube(),
+        ),
+        (
+            "two-beam-corner",
+            "L-shaped corner of two square beams: valence 5 inside, valence 3 outside",
+            samples::two_beam_corner(),
+        ),
+    ]
+}
 
 /// Runs the command.
 pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
@@ -48,6 +97,14 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
     );
     for sample in eg_samples() {
         one_eg(sample, &args.out, &mut text)?;
+    }
+    let _ = writeln!(
+        text,
+        "Whole meshes (capdiv surface): regular faces B-spline, polar fans C2PS, \
+         extraordinary points EG (n = 3, 5) or Catmull-Clark; depth {MESH_DEPTH}, grid {MESH_GRID}, f64\n"
+    );
+    for (name, what, mesh) in mesh_samples() {
+        one_mesh(name, what, &mesh, &args.out, &mut text)?;
     }
     let _ = writeln!(
         text,
@@ -192,6 +249,94 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     s += &w("files", files);
     s += &w("time", times(compute, total));
     text.push_str(&s);
+    text.push('\n');
+    Ok(())
+}
+
+/// One whole mesh through `capdiv surface`'s pipeline: OBJ, PNG, the mesh as
+/// JSON input and the summary as JSON.
+fn one_mesh(
+    name: &str,
+    what: &str,
+    mesh: &MeshInput,
+    dir: &Path,
+    text: &mut String,
+) -> Result<(), CliError> {
+    use super::surface::{build, closed_text, obj_text, render_mesh, tessellate_surface, WELD_F64};
+    let start = Instant::now();
+    let surface = build::<f64>(name, mesh, MESH_DEPTH, &[], "f64")?;
+    let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64);
+    let title = format!("capdiv demo: {name}, {what}");
+    let obj = obj_text(&tess, &surface.summary, &title);
+    let png = png_bytes(&render_mesh(&tess.mesh))?;
+    let compute = start.elapsed();
+    let obj_path = dir.join(format!("{name}.obj"));
+    write_atomic(&obj_path, obj.as_bytes())?;
+    let png_path = dir.join(format!("{name}.png"));
+    write_atomic(&png_path, &png)?;
+    let json_path = dir.join(format!("{name}.json"));
+    let mut input = serde_json::to_value(crate::input::MeshJson::of(mesh)).unwrap_or_default();
+    if let Some(o) = input.as_object_mut() {
+        o.insert("kind".into(), "mesh".into());
+    }
+    write_atomic(&json_path, &to_json(&input, false))?;
+    let summary_path = dir.join(format!("{name}.summary.json"));
+    write_atomic(&summary_path, &to_json(&surface.summary, true))?;
+    let total = start.elapsed();
+
+    let s = &surface.summary;
+    let caps: Vec<String> = s
+        .caps
+        .iter()
+        .map(|c| format!("{} x{} n={}", c.scheme, c.count, c.valence))
+        .collect();
+    let p = &s.patches;
+    let i = &tess.info;
+    let w = |label: &str, value: String| format!("  {label:<20}{value}\n");
+    let mut out = format!("{name}: {what}\n");
+    out += &w(
+        "input",
+        format!("{} vertices, {} faces", s.input.vertices, s.input.faces),
+    );
+    out += &w("caps", caps.join(", "));
+    out += &w(
+        "patches",
+        format!(
+            "{} ({} regular, {} polar, {} eg, {} catmull-clark)",
+            p.total, p.regular, p.polar, p.eg, p.catmull_clark
+        ),
+    );
+    out += &w(
+        "refinement",
+        format!(
+            "{} step(s), needed by {} input faces; {} uncovered",
+            s.refinement_steps,
+            s.needed_refinement.len(),
+            s.uncovered.len()
+        ),
+    );
+    out += &w(
+        "surface",
+        format!(
+            "{} vertices, {} triangles, {} quads; {}",
+            i.vertices,
+            i.triangles,
+            i.quads,
+            closed_text(&i.closed)
+        ),
+    );
+    out += &w(
+        "files",
+        format!(
+            "{}, {}, {}, {}",
+            obj_path.display(),
+            png_path.display(),
+            json_path.display(),
+            summary_path.display()
+        ),
+    );
+    out += &w("time", times(compute, total));
+    text.push_str(&out);
     text.push('\n');
     Ok(())
 }
