@@ -5,7 +5,7 @@
 //! - [`args`]: the command line (clap derive);
 //! - [`input`]: reading a source (file or `-`) and parsing the JSON input,
 //!   dispatched on its `kind` tag (`polar` for C²PS, `cnet` and `dnet` for
-//!   EG);
+//!   EG, `mesh` for `capdiv surface`, which also reads Wavefront OBJ);
 //! - [`table`]: user rule tables for EG (`--table FILE`);
 //! - [`capacity`]: choosing a compile-time net capacity for the valence a job
 //!   needs (spec C2PS.md §1: level `m` has valence `n·2^m`);
