@@ -4,6 +4,10 @@
 //! step: `new[2j] = old[j]`, `new[2j+1] = old[j]·ω_{2N}` (one complex product,
 //! `ω_{2N}` from a half-angle step kept in `f64`). The error therefore grows by
 //! one rounding per level, not per entry. Storage: `2·CAP` scalars.
+//!
+//! The ring algorithms (`fill_ring`, `double_ring`) work on plain slices, once
+//! per scalar type; [`RootsOfUnity`] and [`crate::polar::PolarNetBuf`] (roots in
+//! caller storage) both call them.
 
 use crate::error::Error;
 use crate::polar::index::{at, put};
@@ -39,34 +43,19 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
 
     /// Refills the ring in place for valence `n`; on error it is unchanged.
     pub fn reset(&mut self, n: usize) -> Result<(), Error> {
-        Self::check(n)?;
-        // Odd part (or 4 for powers of two) by a short product chain, then doublings.
-        let odd = n >> n.trailing_zeros();
-        let base = if odd == 1 { 4 } else { odd };
-        let mut primitive =
-            super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
-        fill(self.ring.as_mut_view(), base, primitive)?;
-        while self.ring.len() < n {
-            primitive = double(self.ring.as_mut_view(), primitive)?;
-        }
-        self.primitive = primitive;
+        check_valence(n, CAP)?;
+        let seed = seed(n)?;
+        self.ring.clear();
+        // Cannot fail: n <= CAP was checked above.
+        let _ = self.ring.resize(n, [R::ZERO; 2]);
+        self.primitive = fill_ring(&mut self.ring, n, seed);
         Ok(())
     }
 
     /// The errors [`Self::reset`] would return for valence `n`, without
     /// touching anything.
     pub fn check(n: usize) -> Result<(), Error> {
-        if n < 3 {
-            return Err(Error::ValenceTooSmall { valence: n });
-        }
-        if n > CAP {
-            return Err(Error::CapacityExceeded {
-                needed: n,
-                capacity: CAP,
-            });
-        }
-        super::primitive_root(n).ok_or(Error::ValenceUnsupported { valence: n })?;
-        Ok(())
+        check_valence(n, CAP)
     }
 
     /// Valence `N` of the ring.
@@ -105,21 +94,79 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
     /// Doubles the valence in place: afterwards the ring holds the `2N`-th roots.
     /// Fails, unchanged, when `2N > CAP`.
     pub fn double(&mut self) -> Result<(), Error> {
-        self.primitive = double(self.ring.as_mut_view(), self.primitive)?;
+        let n = self.ring.len();
+        check_double(n, CAP)?;
+        // Cannot fail: 2n <= CAP was checked above.
+        let _ = self.ring.resize(2 * n, [R::ZERO; 2]);
+        self.primitive = double_ring(&mut self.ring, n, self.primitive);
         Ok(())
     }
 }
 
-/// Fills `ring` with the `n`-th roots: the powers `ω^j` for `j <= n/2` by
+// The ring algorithms below work on plain slices and are shared by every
+// capacity: `RootsOfUnity<R, CAP>` (a heapless `Vec`) and
+// `crate::polar::PolarNetBuf` (caller storage) both call them.
+
+/// The errors of building the ring of valence `n` in room for `cap` roots, in
+/// the order checked: [`Error::ValenceTooSmall`], [`Error::CapacityExceeded`],
+/// [`Error::ValenceUnsupported`].
+pub(crate) fn check_valence(n: usize, cap: usize) -> Result<(), Error> {
+    if n < 3 {
+        return Err(Error::ValenceTooSmall { valence: n });
+    }
+    if n > cap {
+        return Err(Error::CapacityExceeded {
+            needed: n,
+            capacity: cap,
+        });
+    }
+    super::primitive_root(n).ok_or(Error::ValenceUnsupported { valence: n })?;
+    Ok(())
+}
+
+/// [`Error::CapacityExceeded`] when a ring of valence `n` cannot double in
+/// room for `cap` roots.
+#[inline]
+pub(crate) fn check_double(n: usize, cap: usize) -> Result<(), Error> {
+    if 2 * n > cap {
+        return Err(Error::CapacityExceeded {
+            needed: 2 * n,
+            capacity: cap,
+        });
+    }
+    Ok(())
+}
+
+/// Where [`fill_ring`] starts for valence `n`: the odd part of `n` (or 4 for
+/// powers of two) and its primitive root. Fails for an unsupported odd part.
+pub(crate) fn seed(n: usize) -> Result<(usize, (f64, f64)), Error> {
+    let odd = n >> n.trailing_zeros();
+    let base = if odd == 1 { 4 } else { odd };
+    let primitive = super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
+    Ok((base, primitive))
+}
+
+/// Writes the `n`-th roots to `ring[..n]` (`ring.len() >= n`, `n` checked by
+/// [`check_valence`], `seed` from [`seed`]): the base ring by a short product
+/// chain, then doublings in place. Returns `(cos, sin)(2π/n)` in `f64`.
+pub(crate) fn fill_ring<R: Real>(
+    ring: &mut [[R; 2]],
+    n: usize,
+    (base, mut primitive): (usize, (f64, f64)),
+) -> (f64, f64) {
+    fill(ring, base, primitive);
+    let mut len = base;
+    while len < n && len > 0 {
+        primitive = double_ring(ring, len, primitive);
+        len *= 2;
+    }
+    primitive
+}
+
+/// Fills `ring[..n]` with the `n`-th roots: the powers `ω^j` for `j <= n/2` by
 /// repeated multiplication in `f64` (at most 63 products for the odd part),
 /// the rest by symmetry `ω^(n-j) = conj ω^j`.
-fn fill<R: Real>(ring: &mut VecView<[R; 2]>, n: usize, w: (f64, f64)) -> Result<(), Error> {
-    ring.clear();
-    ring.resize(n, [R::ZERO; 2])
-        .map_err(|_| Error::CapacityExceeded {
-            needed: n,
-            capacity: ring.capacity(),
-        })?;
+fn fill<R: Real>(ring: &mut [[R; 2]], n: usize, w: (f64, f64)) {
     let (mut c, mut s) = (1.0f64, 0.0f64);
     for j in 0..=n / 2 {
         put(ring, j, [R::from_f64(c), R::from_f64(s)]);
@@ -130,29 +177,19 @@ fn fill<R: Real>(ring: &mut VecView<[R; 2]>, n: usize, w: (f64, f64)) -> Result<
         s = s * w.0 + c * w.1;
         c = c2;
     }
-    Ok(())
 }
 
-fn double<R: Real>(ring: &mut VecView<[R; 2]>, w: (f64, f64)) -> Result<(f64, f64), Error> {
-    let n = ring.len();
-    if 2 * n > ring.capacity() {
-        return Err(Error::CapacityExceeded {
-            needed: 2 * n,
-            capacity: ring.capacity(),
-        });
-    }
+/// Doubles the ring `ring[..n]` of `n`-th roots in place into `ring[..2n]`
+/// (`ring.len() >= 2n`, checked by the caller): `new[2j] = old[j]`,
+/// `new[2j+1] = old[j]·ω_{2n}`. `w = (cos, sin)(2π/n)`; returns that of `2n`.
+pub(crate) fn double_ring<R: Real>(ring: &mut [[R; 2]], n: usize, w: (f64, f64)) -> (f64, f64) {
     let ch = libm::sqrt(0.5 * (1.0 + w.0));
     let half = (ch, w.1 / (2.0 * ch));
     let (hc, hs) = (R::from_f64(half.0), R::from_f64(half.1));
-    ring.resize(2 * n, [R::ZERO; 2])
-        .map_err(|_| Error::CapacityExceeded {
-            needed: 2 * n,
-            capacity: ring.capacity(),
-        })?;
     for j in (0..n).rev() {
         let [c, s] = at(ring, j, [R::ZERO; 2]);
         put(ring, 2 * j, [c, s]);
         put(ring, 2 * j + 1, [c * hc - s * hs, s * hc + c * hs]);
     }
-    Ok(half)
+    half
 }
