@@ -873,3 +873,75 @@ fn summary_goes_to_stderr_unless_quiet() {
     let pretty = surface(&["--depth", "2", "--pretty"], s(&path), None);
     assert_eq!(untimed(pretty), untimed(json));
 }
+
+/// Index of the input vertex nearest to `p`.
+fn nearest(m: &MeshInput, p: [f64; 3]) -> usize {
+    (0..m.vertices.len())
+        .min_by(|&a, &b| diff(&m.vertices[a], &p).total_cmp(&diff(&m.vertices[b], &p)))
+        .unwrap()
+}
+
+#[test]
+fn domains_follow_the_parameter_conventions() {
+    let dir = tempdir();
+    // Quads: the corner b_00 of a whole-face patch sits near the face's first
+    // vertex, b_d0 (u = 1) near the second, b_0d (v = 1) near the last.
+    let m = samples::torus(12, 8);
+    let path = write(dir.path(), "t.obj", &obj_text(&m, Corners::Plain));
+    let out = surface(&["--depth", "1"], s(&path), None);
+    for p in out["patches"].as_array().unwrap() {
+        assert_eq!(p["domain"], json!([0.0, 1.0, 0.0, 1.0]));
+        let f = &m.faces[p["face"].as_u64().unwrap() as usize];
+        let pts = &p["points"];
+        let at = |i: usize, j: usize| p3(&pts[4 * j + i]);
+        assert_eq!(nearest(&m, at(0, 0)), f[0] as usize);
+        assert_eq!(nearest(&m, at(3, 0)), f[1] as usize);
+        assert_eq!(nearest(&m, at(3, 3)), f[2] as usize);
+        assert_eq!(nearest(&m, at(0, 3)), f[3] as usize);
+    }
+    // Polar fan triangles: u from the pole (u = 0) to the 1-link (u = 1),
+    // v from the first spoke (towards the vertex after the pole in the face)
+    // to the second, counter-clockwise.
+    let m = samples::globe(8, 9);
+    let path = write(dir.path(), "g.obj", &obj_text(&m, Corners::Plain));
+    let out = surface(&["--depth", "3"], s(&path), None);
+    let caps = out["caps"].as_array().unwrap();
+    let mut checked = 0;
+    for p in out["patches"].as_array().unwrap() {
+        let f = &m.faces[p["face"].as_u64().unwrap() as usize];
+        if p["kind"] != "polar" || f.len() != 3 {
+            continue;
+        }
+        let dom: Vec<f64> = p["domain"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let pole = caps
+            .iter()
+            .find(|c| f.contains(&(c["vertex"].as_u64().unwrap() as u32)))
+            .unwrap();
+        let k = f
+            .iter()
+            .position(|&v| u64::from(v) == pole["vertex"].as_u64().unwrap())
+            .unwrap();
+        let (first, second) = (f[(k + 1) % 3], f[(k + 2) % 3]);
+        let limit = p3(&pole["limit"]);
+        let pts = &p["points"];
+        let at = |i: usize, j: usize| p3(&pts[4 * j + i]);
+        // Farther along u is farther from the pole.
+        assert!(diff(&at(3, 0), &limit) > diff(&at(0, 0), &limit));
+        // The outermost patches at the spokes: v = 0 towards the first spoke's
+        // link vertex, v = 1 towards the second's.
+        if dom[1] == 1.0 && dom[2] == 0.0 {
+            assert_eq!(nearest(&m, at(3, 0)), first as usize);
+            checked += 1;
+        }
+        if dom[1] == 1.0 && dom[3] == 1.0 {
+            assert_eq!(nearest(&m, at(3, 3)), second as usize);
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 2 * 2 * 8, "two spokes of 8 triangles at 2 poles");
+}
