@@ -30,5 +30,5 @@ pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;
 pub use point::Point3;
-pub use polar::{FirstStep, OuterRegion, PolarNet, PoleGeometry, PoleJet};
+pub use polar::{FirstStep, OuterRegion, PolarNet, PolarNetBuf, PoleGeometry, PoleJet};
 pub use real::Real;

@@ -6,6 +6,7 @@
 //! `p4 = 3 C2`, `p5 = 3 S2`, from the configuration's own valence. Near the pole
 //! the limit surface is `p0 + p1 x + p2 y + p3 (x²+y²) + p4 (x²−y²) + p5 (2xy)`.
 
+use super::buf::PolarNetBuf;
 use super::fourier::Fourier;
 use super::net::PolarNet;
 use crate::error::Error;
@@ -37,9 +38,24 @@ pub struct PoleGeometry<R> {
 impl<R: Real> PoleJet<R> {
     /// The jet of a net at its current level.
     pub fn of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Self {
-        let link1 = net.link(1).unwrap_or(&[]);
-        let f = Fourier::of(link1, net.roots().as_slice(), 1);
-        let q00 = net.pole();
+        Self::from_parts(
+            net.pole(),
+            net.link(1).unwrap_or(&[]),
+            net.roots().as_slice(),
+        )
+    }
+
+    /// The jet of a net in caller storage at its current level (the same
+    /// numbers as [`Self::of`] for the same configuration).
+    pub fn of_buf(net: &PolarNetBuf<'_, R>) -> Self {
+        Self::from_parts(net.pole(), net.link(1).unwrap_or(&[]), net.roots())
+    }
+
+    /// The jet from the pole, the 1-link and the roots of its valence
+    /// (`roots.len() = link1.len()`): the one implementation behind
+    /// [`Self::of`] and [`Self::of_buf`].
+    fn from_parts(q00: Point3<R>, link1: &[Point3<R>], roots: &[[R; 2]]) -> Self {
+        let f = Fourier::of(link1, roots, 1);
         let two = R::from_f64(2.0);
         let three = R::from_f64(3.0);
         PoleJet {

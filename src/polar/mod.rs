@@ -1,9 +1,11 @@
 //! C²PS — bi-3 C² polar subdivision (spec `C2PS.md`).
 //!
-//! Data flows one way: a [`PolarNet`] is built and validated once, refined in
+//! Data flows one way: a [`PolarNet`] (or a [`PolarNetBuf`], the same net in
+//! caller-provided storage) is built and validated once, refined in
 //! place by [`PolarNet::step`] (C²PS, §2) or [`PolarNet::rts_step`] (RTS, §3),
 //! and read out as a [`PoleJet`] (§4) or as bicubic ring patches (§5).
 
+pub mod buf;
 mod fourier;
 pub(crate) mod index;
 pub mod jet;
@@ -13,7 +15,8 @@ pub mod ring;
 mod rts;
 mod step;
 
+pub use buf::PolarNetBuf;
 pub use jet::{PoleGeometry, PoleJet};
 pub use net::{FirstStep, PolarNet, MAX_STORED_LINKS};
 pub use outer::OuterRegion;
-pub use ring::RingPatches;
+pub use ring::{RingPatches, RingPatchesView};

@@ -143,33 +143,8 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
 
     /// [`Self::from_flat`] in place; on error the net is unchanged.
     pub fn reset_flat(&mut self, pole: [R; 3], valence: usize, coords: &[R]) -> Result<(), Error> {
-        if valence < 3 {
-            return Err(Error::ValenceTooSmall { valence });
-        }
-        let per_link = 3 * valence;
-        if !coords.len().is_multiple_of(per_link) {
-            return Err(Error::WrongLength {
-                expected: (coords.len() / per_link + 1) * per_link,
-                found: coords.len(),
-            });
-        }
-        let count = coords.len() / per_link;
-        if count < 2 {
-            return Err(Error::TooFewLinks { links: count });
-        }
-        if !coords.iter().all(|c| c.is_finite()) {
-            return Err(Error::NonFinite);
-        }
-        let (pts, _) = coords.as_chunks::<3>();
-        let stored = count.min(MAX_STORED_LINKS);
-        let mut links: [&[[R; 3]]; MAX_STORED_LINKS] = [&[]; MAX_STORED_LINKS];
-        for (i, l) in links.iter_mut().enumerate().take(stored) {
-            // In range: i < stored <= count = pts.len() / valence. `get` only
-            // spares the slice-index panic path (an empty link would be
-            // rejected by `reset` as a length mismatch).
-            *l = pts.get(i * valence..(i + 1) * valence).unwrap_or(&[]);
-        }
-        self.reset(pole, &links[..stored])
+        let (links, stored) = flat_links(valence, coords)?;
+        self.reset(pole, links.get(..stored).unwrap_or(&[]))
     }
 
     /// Current valence `N = n·2^level`.
@@ -213,9 +188,49 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     pub fn roots(&self) -> &RootsOfUnity<R, CAP> {
         &self.roots
     }
-    /// Links one step adds: with old links up to `K`, new links up to `2K−1`.
-    #[inline]
-    pub(crate) fn held_after_step(&self) -> usize {
-        (2 * self.held).saturating_sub(1).min(MAX_STORED_LINKS)
+}
+
+/// Splits flat coordinates (`links·valence` points as `x, y, z` triples, link
+/// by link) into the links to store: `(links, stored)`, `links[..stored]`.
+/// Errors, in this order: [`Error::ValenceTooSmall`], [`Error::WrongLength`],
+/// [`Error::TooFewLinks`], [`Error::NonFinite`].
+#[allow(clippy::type_complexity)]
+pub(crate) fn flat_links<R: Real>(
+    valence: usize,
+    coords: &[R],
+) -> Result<([&[[R; 3]]; MAX_STORED_LINKS], usize), Error> {
+    if valence < 3 {
+        return Err(Error::ValenceTooSmall { valence });
     }
+    let per_link = 3 * valence;
+    if !coords.len().is_multiple_of(per_link) {
+        return Err(Error::WrongLength {
+            expected: (coords.len() / per_link + 1) * per_link,
+            found: coords.len(),
+        });
+    }
+    let count = coords.len() / per_link;
+    if count < 2 {
+        return Err(Error::TooFewLinks { links: count });
+    }
+    if !coords.iter().all(|c| c.is_finite()) {
+        return Err(Error::NonFinite);
+    }
+    let (pts, _) = coords.as_chunks::<3>();
+    let stored = count.min(MAX_STORED_LINKS);
+    let mut links: [&[[R; 3]]; MAX_STORED_LINKS] = [&[]; MAX_STORED_LINKS];
+    for (i, l) in links.iter_mut().enumerate().take(stored) {
+        // In range: i < stored <= count = pts.len() / valence. `get` only
+        // spares the slice-index panic path (an empty link would be
+        // rejected by `reset` as a length mismatch).
+        *l = pts.get(i * valence..(i + 1) * valence).unwrap_or(&[]);
+    }
+    Ok((links, stored))
+}
+
+/// Links held after one step: with old links up to `K`, new links up to `2K−1`
+/// (at most [`MAX_STORED_LINKS`]).
+#[inline]
+pub(crate) fn held_after_step(held: usize) -> usize {
+    (2 * held).saturating_sub(1).min(MAX_STORED_LINKS)
 }

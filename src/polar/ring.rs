@@ -14,6 +14,7 @@ use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
+use core::marker::PhantomData;
 
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// Number of patches in the current ring, `2N`.
@@ -26,19 +27,56 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// `column < N`. Needs all 5 links ([`Error::NotEnoughLinks`]);
     /// [`Error::OutOfDomain`] for an index outside the ring.
     pub fn ring_patch(&self, span: usize, column: usize) -> Result<BicubicPatch<R>, Error> {
-        if self.held < 5 {
-            return Err(Error::NotEnoughLinks {
-                needed: 5,
-                held: self.held,
-            });
+        self.ring()?.patch(span, column)
+    }
+
+    /// All `2N` patches of the current ring: span 0 (columns 0..N), then span 1.
+    pub fn ring_patches(&self) -> Result<RingPatches<'_, R, CAP>, Error> {
+        Ok(RingPatches {
+            inner: self.ring()?.patches(),
+            _net: PhantomData,
+        })
+    }
+
+    fn ring(&self) -> Result<Ring<'_, R>, Error> {
+        Ring::new(
+            self.links.each_ref().map(|l| l.as_slice()),
+            self.held,
+            self.valence(),
+        )
+    }
+}
+
+/// The current ring of a net over plain slices: links 1..5 and the valence.
+/// The patch construction exists once per scalar type, shared by
+/// [`PolarNet`] and [`super::PolarNetBuf`].
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct Ring<'a, R> {
+    /// Links 1..5, each at least `n` points long.
+    links: [&'a [Point3<R>]; 5],
+    n: usize,
+}
+
+impl<'a, R: Real> Ring<'a, R> {
+    /// The ring of a net holding `held` links of valence `n`;
+    /// [`Error::NotEnoughLinks`] below 5 links.
+    pub(crate) fn new(links: [&'a [Point3<R>]; 5], held: usize, n: usize) -> Result<Self, Error> {
+        if held < 5 {
+            return Err(Error::NotEnoughLinks { needed: 5, held });
         }
-        let n = self.valence();
+        Ok(Ring { links, n })
+    }
+
+    /// Patch `(span, column)`; [`Error::OutOfDomain`] outside the ring.
+    pub(crate) fn patch(&self, span: usize, column: usize) -> Result<BicubicPatch<R>, Error> {
+        let n = self.n;
         if span > 1 || column >= n {
             return Err(Error::OutOfDomain);
         }
         let mut d = [[Point3::ZERO; 4]; 4];
         for (k, row) in d.iter_mut().enumerate() {
-            // span + k <= 4 and every stored link has n points: in range.
+            // span + k <= 4 and every link has n points: in range.
             let link: &[Point3<R>] = self.links.get(span + k).map_or(&[], |l| l);
             for (l, p) in row.iter_mut().enumerate() {
                 // n >= 3 here; checked_rem only spares a divide-by-zero path.
@@ -51,30 +89,50 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
         })
     }
 
-    /// All `2N` patches of the current ring: span 0 (columns 0..N), then span 1.
-    pub fn ring_patches(&self) -> Result<RingPatches<'_, R, CAP>, Error> {
-        if self.held < 5 {
-            return Err(Error::NotEnoughLinks {
-                needed: 5,
-                held: self.held,
-            });
+    /// An iterator over all `2N` patches.
+    pub(crate) fn patches(self) -> RingPatchesView<'a, R> {
+        RingPatchesView {
+            ring: self,
+            next: 0,
         }
-        Ok(RingPatches { net: self, next: 0 })
     }
 }
 
-/// Iterator over the patches of one ring.
+/// Iterator over the patches of one ring of a [`PolarNet`].
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RingPatches<'a, R, const CAP: usize> {
-    net: &'a PolarNet<R, CAP>,
-    next: usize,
+    inner: RingPatchesView<'a, R>,
+    _net: PhantomData<&'a PolarNet<R, CAP>>,
 }
 
 impl<R: Real, const CAP: usize> Iterator for RingPatches<'_, R, CAP> {
     type Item = BicubicPatch<R>;
+    #[inline]
     fn next(&mut self) -> Option<Self::Item> {
-        let n = self.net.valence();
+        self.inner.next()
+    }
+    #[inline]
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.inner.size_hint()
+    }
+}
+
+impl<R: Real, const CAP: usize> ExactSizeIterator for RingPatches<'_, R, CAP> {}
+
+/// Iterator over the patches of one ring, capacity-erased: what
+/// [`super::PolarNetBuf::ring_patches`] returns, and what [`RingPatches`] wraps.
+#[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RingPatchesView<'a, R> {
+    ring: Ring<'a, R>,
+    next: usize,
+}
+
+impl<R: Real> Iterator for RingPatchesView<'_, R> {
+    type Item = BicubicPatch<R>;
+    fn next(&mut self) -> Option<Self::Item> {
+        let n = self.ring.n;
         if self.next >= 2 * n {
             return None;
         }
@@ -82,12 +140,12 @@ impl<R: Real, const CAP: usize> Iterator for RingPatches<'_, R, CAP> {
         self.next += 1;
         // n >= 3 here; the checked forms only spare a divide-by-zero path.
         let (span, column) = (i.checked_div(n)?, i.checked_rem(n)?);
-        self.net.ring_patch(span, column).ok()
+        self.ring.patch(span, column).ok()
     }
     fn size_hint(&self) -> (usize, Option<usize>) {
-        let left = (2 * self.net.valence()).saturating_sub(self.next);
+        let left = (2 * self.ring.n).saturating_sub(self.next);
         (left, Some(left))
     }
 }
 
-impl<R: Real, const CAP: usize> ExactSizeIterator for RingPatches<'_, R, CAP> {}
+impl<R: Real> ExactSizeIterator for RingPatchesView<'_, R> {}

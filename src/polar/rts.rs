@@ -3,10 +3,9 @@
 
 use super::fourier::Fourier;
 use super::index::{add_mod, at, put};
-use super::net::PolarNet;
+use super::net::{held_after_step, PolarNet};
 use crate::point::Point3;
 use crate::real::Real;
-use heapless::VecView;
 
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One RTS step. Valence and level are unchanged; the links held grow as
@@ -15,27 +14,16 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
         if self.held < 2 {
             return; // an empty net: nothing to refine
         }
-        let new_held = self.held_after_step();
+        let new_held = held_after_step(self.held);
         let n = self.valence();
-        let [l1, l2, l3, l4, l5] = &mut self.links;
-        for (slot, l) in [&mut *l1, &mut *l2, &mut *l3, &mut *l4, &mut *l5]
-            .into_iter()
-            .enumerate()
-        {
-            if slot < new_held {
-                // Cannot fail: n <= CAP already holds for link 1.
-                let _ = l.resize(n, Point3::ZERO);
-            }
+        for l in self.links.iter_mut().take(new_held) {
+            // Cannot fail: n <= CAP already holds for link 1.
+            let _ = l.resize(n, Point3::ZERO);
         }
         rts_in_place(
             &mut self.pole,
-            [
-                l1.as_mut_view(),
-                l2.as_mut_view(),
-                l3.as_mut_view(),
-                l4.as_mut_view(),
-                l5.as_mut_view(),
-            ],
+            self.links.each_mut().map(|l| l.as_mut_slice()),
+            n,
             self.held,
             self.roots.as_slice(),
         );
@@ -43,18 +31,22 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     }
 }
 
-fn rts_in_place<R: Real>(
+/// The step over plain slices (compiled once per scalar type, shared by
+/// [`PolarNet`] and [`super::PolarNetBuf`]). On entry `links[k][..n]` holds
+/// link `k+1` for `k < held`, and every link that will be written
+/// (`k < 2·held − 1`, at most 5) has room for `n` points (more is left alone).
+pub(crate) fn rts_in_place<R: Real>(
     pole: &mut Point3<R>,
-    links: [&mut VecView<Point3<R>>; 5],
+    links: [&mut [Point3<R>]; 5],
+    n: usize,
     held: usize,
     roots: &[[R; 2]],
 ) {
     let [l1, l2, l3, l4, l5] = links;
-    let n = l1.len();
-    let f = Fourier::of(l1, roots, 1);
+    let f = Fourier::of(l1.get(..n).unwrap_or(&[]), roots, 1);
     let q00 = *pole;
-    let has3 = held >= 3 && l3.len() == n && l4.len() == n && l5.len() == n;
-    if l2.len() != n || l3.len() != n {
+    let has3 = held >= 3 && l3.len() >= n && l4.len() >= n && l5.len() >= n;
+    if l1.len() < n || l2.len() < n || l3.len() < n {
         return;
     }
     let half = R::ratio(1, 2);

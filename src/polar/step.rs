@@ -10,11 +10,10 @@
 
 use super::fourier::Fourier;
 use super::index::{add_mod, at, next_mod, put};
-use super::net::{FirstStep, PolarNet};
+use super::net::{held_after_step, FirstStep, PolarNet};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
-use heapless::VecView;
 
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One C²PS step. `first` selects the first-step variant; it only matters
@@ -23,42 +22,43 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// [`Error::CapacityExceeded`] when `2N > CAP`, [`Error::NotEnoughLinks`]
     /// on an [`PolarNet::empty`] net; the net is then unchanged.
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
-        if self.held < 2 {
-            return Err(Error::NotEnoughLinks {
-                needed: 2,
-                held: self.held,
-            });
-        }
         let n = self.valence();
-        if 2 * n > CAP {
-            return Err(Error::CapacityExceeded {
-                needed: 2 * n,
-                capacity: CAP,
-            });
-        }
+        check_step(self.held, n, CAP)?;
         self.roots.double()?;
-        let uniform_first = self.level == 0 && first == FirstStep::Uniform;
-        let new_held = self.held_after_step();
-        let [l1, l2, l3, l4, l5] = &mut self.links;
-        let links = [
-            l1.as_mut_view(),
-            l2.as_mut_view(),
-            l3.as_mut_view(),
-            l4.as_mut_view(),
-            l5.as_mut_view(),
-        ];
+        let new_held = held_after_step(self.held);
+        for l in self.links.iter_mut().take(new_held) {
+            // Cannot fail: 2n <= CAP was checked above.
+            let _ = l.resize(2 * n, Point3::ZERO);
+        }
         c2ps_in_place(
             &mut self.pole,
-            links,
+            self.links.each_mut().map(|l| l.as_mut_slice()),
+            n,
             self.held,
             new_held,
             self.roots.as_slice(),
-            uniform_first,
+            self.level == 0 && first == FirstStep::Uniform,
         );
         self.held = new_held;
         self.level += 1;
         Ok(())
     }
+}
+
+/// The errors of a C²PS step from valence `n` with `held` links in room for
+/// `cap` points per link, in the order checked: [`Error::NotEnoughLinks`],
+/// [`Error::CapacityExceeded`].
+pub(crate) fn check_step(held: usize, n: usize, cap: usize) -> Result<(), Error> {
+    if held < 2 {
+        return Err(Error::NotEnoughLinks { needed: 2, held });
+    }
+    if 2 * n > cap {
+        return Err(Error::CapacityExceeded {
+            needed: 2 * n,
+            capacity: cap,
+        });
+    }
+    Ok(())
 }
 
 /// Uniform cubic periodic refinement of `u` at old index `j`: `(ũ[2j], ũ[2j+1])`.
@@ -69,35 +69,29 @@ fn refine<R: Real>(prev: Point3<R>, cur: Point3<R>, next: Point3<R>) -> (Point3<
     (even, odd)
 }
 
-/// The step over capacity-erased views (compiled once per scalar type).
-/// `roots` are already the `2n`-th roots; every link view has room for `2n`.
-fn c2ps_in_place<R: Real>(
+/// The step over plain slices (compiled once per scalar type, shared by
+/// [`PolarNet`] and [`super::PolarNetBuf`]). `n` is the old valence: on entry
+/// `links[k][..n]` holds link `k+1` for `k < held`, and every link that will be
+/// written (`k < new_held`) has room for `2n` points (more is left alone);
+/// `roots` are already the `2n`-th roots.
+pub(crate) fn c2ps_in_place<R: Real>(
     pole: &mut Point3<R>,
-    links: [&mut VecView<Point3<R>>; 5],
+    links: [&mut [Point3<R>]; 5],
+    n: usize,
     held: usize,
     new_held: usize,
     roots: &[[R; 2]],
     uniform_first: bool,
 ) {
     let [l1, l2, l3, l4, l5] = links;
-    let n = l1.len();
     let n2 = 2 * n;
-    let f = Fourier::of(l1, roots, 2);
+    let f = Fourier::of(l1.get(..n).unwrap_or(&[]), roots, 2);
     let q00 = *pole;
     let has3 = held >= 3;
 
-    // Grow every link that will be written; the tail is filled by the sweep.
-    // (Capacity was checked by the caller; a failure here would leave the
-    // length short, so the sweep below only touches indices < len.)
-    for (slot, l) in [&mut *l1, &mut *l2, &mut *l3, &mut *l4, &mut *l5]
-        .into_iter()
-        .enumerate()
-    {
-        if slot < new_held {
-            let _ = l.resize(n2, Point3::ZERO);
-        }
-    }
-    if l1.len() != n2 || l2.len() != n2 || l3.len() != n2 {
+    // Every link that will be written has room for 2n (checked by the caller;
+    // a short one would only make the sweep below do nothing).
+    if l1.len() < n2 || l2.len() < n2 || l3.len() < n2 {
         return;
     }
     let z = Point3::ZERO;
@@ -113,12 +107,12 @@ fn c2ps_in_place<R: Real>(
     let half = R::ratio(1, 2);
     let six = R::from_f64(6.0);
     let eighth = R::ratio(1, 8);
-    let write45 = has3 && l4.len() == n2 && l5.len() == n2;
+    let write45 = has3 && new_held >= 5 && l4.len() >= n2 && l5.len() >= n2;
     let no_root = [R::ZERO; 2];
 
     for j in (0..n).rev() {
         let (jm, jp) = (if j == 0 { jl } else { j - 1 }, next_mod(j, n));
-        let get = |l: &VecView<Point3<R>>, k: usize, i: usize| {
+        let get = |l: &[Point3<R>], k: usize, i: usize| {
             if j == 0 && i == jm {
                 at(&last, k, z)
             } else {
