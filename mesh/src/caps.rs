@@ -188,10 +188,10 @@ pub fn polar_config(
         Vec::new()
     } else if boundary_at.is_some() {
         (0..n)
-            .map(|j| vec![(link2[j], 2.0), (link1[j], -1.0)])
+            .filter_map(|j| Combo::from_terms(&[(link2[j], 2.0), (link1[j], -1.0)]))
             .collect()
     } else {
-        rings[1].iter().map(|&q| vec![(q, 1.0)]).collect()
+        rings[1].iter().map(|&q| Combo::vertex(q)).collect()
     };
     // All vertices distinct (a configuration must not wrap onto itself).
     let mut all: Vec<u32> = link1.iter().chain(&link2).copied().collect();
@@ -313,7 +313,7 @@ mod tests {
                 }
             }
             for j in 0..n {
-                let p = m.vertices[c.link3[j][0].0 as usize];
+                let p = m.vertices[c.link3[j].terms()[0].0 as usize];
                 assert!((libm::hypot(p[0], p[1]) - 3.0).abs() < 1e-12);
                 // Link 2 column j lies on the ray of link 1 column j.
                 let a = m.vertices[c.links[0][j] as usize];
@@ -329,8 +329,8 @@ mod tests {
         let t = Topology::new(&m).unwrap();
         let c = polar_config(&t, 0, None, true).unwrap();
         assert_eq!(
-            c.link3[0],
-            vec![(c.links[1][0], 2.0), (c.links[0][0], -1.0)]
+            c.link3[0].terms(),
+            &[(c.links[1][0], 2.0), (c.links[0][0], -1.0)]
         );
         // Links 1 only: no configuration.
         let m = pole_disk(6, 1);

@@ -3,11 +3,69 @@
 //! boundary (mirror `2b − i`, Catmull-Clark's edge-only boundary).
 
 use crate::topology::{Topology, NONE};
-use alloc::vec::Vec;
 
 /// A grid entry: a linear combination of mesh vertices (a vertex itself has
-/// one term of weight 1; a phantom point two or four).
-pub type Combo = Vec<(u32, f64)>;
+/// one term of weight 1; a phantom point two, or four at a corner). Fixed
+/// size, so gathering a face allocates nothing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Combo {
+    terms: [(u32, f64); 4],
+    len: u8,
+}
+
+impl Combo {
+    /// The vertex `v` itself.
+    pub fn vertex(v: u32) -> Self {
+        Combo {
+            terms: [(v, 1.0), (0, 0.0), (0, 0.0), (0, 0.0)],
+            len: 1,
+        }
+    }
+
+    /// `Σ w·v` over `terms` (at most 4; `None` beyond).
+    pub fn from_terms(terms: &[(u32, f64)]) -> Option<Self> {
+        let mut c = Combo {
+            terms: [(0, 0.0); 4],
+            len: 0,
+        };
+        for &t in terms {
+            *c.terms.get_mut(c.len as usize)? = t;
+            c.len += 1;
+        }
+        Some(c)
+    }
+
+    /// The terms `(vertex, weight)`.
+    pub fn terms(&self) -> &[(u32, f64)] {
+        &self.terms[..self.len as usize]
+    }
+
+    /// The vertex, when the entry is one vertex with weight 1.
+    pub fn as_vertex(&self) -> Option<u32> {
+        match self.terms() {
+            [(v, w)] if *w == 1.0 => Some(*v),
+            _ => None,
+        }
+    }
+
+    /// The mirror `2·near − far` (`None` if it would need more than 4 terms).
+    pub fn mirror(near: &Combo, far: &Combo) -> Option<Self> {
+        let mut c = Combo {
+            terms: [(0, 0.0); 4],
+            len: 0,
+        };
+        let terms = near
+            .terms()
+            .iter()
+            .map(|&(v, w)| (v, 2.0 * w))
+            .chain(far.terms().iter().map(|&(v, w)| (v, -w)));
+        for t in terms {
+            *c.terms.get_mut(c.len as usize)? = t;
+            c.len += 1;
+        }
+        Some(c)
+    }
+}
 
 /// The vertices around `origin(h)` in local coordinates `(a, b) ∈ {−1,0,1}²`
 /// (entry `[a+1][b+1]`): `+x` along `h`, `+y` along the next edge
@@ -120,14 +178,24 @@ pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
             }
         }
     }
-    let mut out: [[Option<Combo>; 4]; 4] = Default::default();
-    for i in 0..4 {
-        for j in 0..4 {
-            out[i][j] = grid[i][j].map(|v| alloc::vec![(v, 1.0)]);
+    let mut out: [[Option<Combo>; 4]; 4] = [[None; 4]; 4];
+    let mut complete = true;
+    for (o_row, g_row) in out.iter_mut().zip(&grid) {
+        for (o, g) in o_row.iter_mut().zip(g_row) {
+            *o = g.map(Combo::vertex);
+            complete &= g.is_some();
         }
     }
-    mirror(&mut out)?;
-    Some(out.map(|row| row.map(|c| c.unwrap_or_default())))
+    if !complete {
+        mirror(&mut out)?;
+    }
+    let mut full = [[Combo::vertex(0); 4]; 4];
+    for (f_row, o_row) in full.iter_mut().zip(&out) {
+        for (f, o) in f_row.iter_mut().zip(o_row) {
+            *f = (*o)?;
+        }
+    }
+    Some(full)
 }
 
 /// Fills missing border entries by mirroring (`2·near − far` along a row or
@@ -143,7 +211,7 @@ fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
     loop {
         let mut changed = false;
         let mut missing = false;
-        let known = g.clone();
+        let known = *g;
         for i in 0..4 {
             for j in 0..4 {
                 if known[i][j].is_some() {
@@ -158,9 +226,7 @@ fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
                 let mut filled = None;
                 for ((ni, nj), (fi, fj)) in pairs.into_iter().flatten() {
                     if let (Some(near), Some(far)) = (&known[ni][nj], &known[fi][fj]) {
-                        let mut c: Combo = near.iter().map(|&(v, w)| (v, 2.0 * w)).collect();
-                        c.extend(far.iter().map(|&(v, w)| (v, -w)));
-                        filled = Some(c);
+                        filled = Some(Combo::mirror(near, far)?);
                         break;
                     }
                 }
@@ -186,6 +252,7 @@ fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
 mod tests {
     use super::*;
     use crate::input::MeshInput;
+    use alloc::vec::Vec;
 
     /// An `nu × nv` quad grid of vertices `(i, j) ↦ i + (nu+1)·j`.
     fn grid_mesh(nu: usize, nv: usize) -> MeshInput {
@@ -217,7 +284,7 @@ mod tests {
         let g = face_grid(&t, f).unwrap();
         for (i, row) in g.iter().enumerate() {
             for (j, c) in row.iter().enumerate() {
-                assert_eq!(c, &alloc::vec![((1 + i + 6 * (1 + j)) as u32, 1.0)]);
+                assert_eq!(c.terms(), &[((1 + i + 6 * (1 + j)) as u32, 1.0)]);
             }
         }
     }
@@ -231,7 +298,7 @@ mod tests {
         // linearly, so entry (i, j) sits at (i − 1, j − 1).
         for (i, row) in g.iter().enumerate() {
             for (j, c) in row.iter().enumerate() {
-                let p = c.iter().fold([0.0; 2], |acc, &(v, w)| {
+                let p = c.terms().iter().fold([0.0; 2], |acc, &(v, w)| {
                     let q = m.vertices[v as usize];
                     [acc[0] + w * q[0], acc[1] + w * q[1]]
                 });
@@ -252,8 +319,8 @@ mod tests {
         let v = |a: usize, b: usize| (a + 5 * b) as u32;
         for (i, column) in g.iter().enumerate() {
             assert_eq!(
-                column[0],
-                alloc::vec![(v(i, 0), 2.0), (v(i, 1), -1.0)],
+                column[0].terms(),
+                &[(v(i, 0), 2.0), (v(i, 1), -1.0)],
                 "i={i}"
             );
         }
@@ -267,9 +334,9 @@ mod tests {
         let t = Topology::new(&m).unwrap();
         let g = face_grid(&t, f).unwrap();
         // Grid (1,1) is the face's first vertex, (2,1) its second, (1,2) its last.
-        assert_eq!(g[1][1][0].0, m.faces[f][0]);
-        assert_eq!(g[2][1][0].0, m.faces[f][1]);
-        assert_eq!(g[2][2][0].0, m.faces[f][2]);
-        assert_eq!(g[1][2][0].0, m.faces[f][3]);
+        assert_eq!(g[1][1].terms()[0].0, m.faces[f][0]);
+        assert_eq!(g[2][1].terms()[0].0, m.faces[f][1]);
+        assert_eq!(g[2][2].terms()[0].0, m.faces[f][2]);
+        assert_eq!(g[1][2].terms()[0].0, m.faces[f][3]);
     }
 }

@@ -314,9 +314,9 @@ impl<'t> SurfacePlan<'t> {
     /// Working-point index of a grid entry: the vertex itself, or a new
     /// phantom point.
     fn point(&mut self, c: &Combo) -> u32 {
-        match c.as_slice() {
-            [(v, w)] if *w == 1.0 => *v,
-            _ => self.vertices as u32 + self.phantoms.push_row(c.iter().copied()),
+        match c.as_vertex() {
+            Some(v) => v,
+            None => self.vertices as u32 + self.phantoms.push_row(c.terms().iter().copied()),
         }
     }
 

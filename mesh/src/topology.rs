@@ -149,41 +149,39 @@ impl Topology {
         for h in 0..nh {
             let v = self.corner_vertex[h] as usize;
             let w = self.dest(h as u32) as usize;
-            // Same direction: another half-edge v→w.
-            for &g in &out[start[v] as usize..start[v + 1] as usize] {
-                if g != h as u32 && self.dest(g) as usize == w {
-                    // Three or more faces on the edge count as non-manifold.
-                    if self.edge_uses(&out, &start, v, w) > 2 {
-                        return Err(self.non_manifold_edge(&out, &start, v, w));
-                    }
-                    let later = h.max(g as usize);
-                    return Err(MeshError::InconsistentOrientation {
-                        face: self.corner_face[later] as usize,
-                        edge: [v, w],
-                    });
-                }
-            }
-            if self.edge_uses(&out, &start, v, w) > 2 {
-                return Err(self.non_manifold_edge(&out, &start, v, w));
-            }
+            // Other half-edges v→w (same direction) and w→v (opposite).
+            let same = out[start[v] as usize..start[v + 1] as usize]
+                .iter()
+                .filter(|&&g| g != h as u32 && self.dest(g) as usize == w)
+                .count();
+            let mut opposite = 0;
             for &g in &out[start[w] as usize..start[w + 1] as usize] {
                 if self.dest(g) as usize == v {
                     self.twin[h] = g;
+                    opposite += 1;
                 }
+            }
+            if 1 + same + opposite > 2 {
+                return Err(self.non_manifold_edge(&out, &start, v, w));
+            }
+            if same > 0 {
+                return Err(MeshError::InconsistentOrientation {
+                    face: self.second_face_on(&out, &start, v, w),
+                    edge: [v, w],
+                });
             }
         }
         Ok(())
     }
 
-    /// Half-edges on the undirected edge `{v, w}`.
-    fn edge_uses(&self, out: &[u32], start: &[u32], v: usize, w: usize) -> usize {
-        let count = |a: usize, b: usize| {
-            out[start[a] as usize..start[a + 1] as usize]
-                .iter()
-                .filter(|&&g| self.dest(g) as usize == b)
-                .count()
-        };
-        count(v, w) + count(w, v)
+    /// The later of the two faces running `v→w`.
+    fn second_face_on(&self, out: &[u32], start: &[u32], v: usize, w: usize) -> usize {
+        out[start[v] as usize..start[v + 1] as usize]
+            .iter()
+            .filter(|&&g| self.dest(g) as usize == w)
+            .map(|&g| self.corner_face[g as usize] as usize)
+            .nth(1)
+            .unwrap_or(0)
     }
 
     /// The error for edge `{v, w}` used by three or more faces: names the
