@@ -19,7 +19,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::eg::{CNet, EgSubdivision, PatchDomain};
-use capdiv::{CcCap, Error, FirstStep, Point3, PolarNet, PoleJet, Real, TensorPatch};
+use capdiv::{CcCap, Error, FirstStep, Point3, PolarNetBuf, PoleJet, Real, TensorPatch};
 
 /// What a patch is made by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -160,28 +160,9 @@ impl core::fmt::Display for EvalError {
     }
 }
 
-/// Net capacities compiled in (valence at the deepest level).
-pub const POLAR_TIERS: [usize; 4] = [1 << 10, 1 << 12, 1 << 14, 1 << 17];
-
-/// A polar net of the smallest tier that fits the plan.
-enum PolarStore<R> {
-    T10(Box<PolarNet<R, { POLAR_TIERS[0] }>>),
-    T12(Box<PolarNet<R, { POLAR_TIERS[1] }>>),
-    T14(Box<PolarNet<R, { POLAR_TIERS[2] }>>),
-    T17(Box<PolarNet<R, { POLAR_TIERS[3] }>>),
-}
-
-/// Runs `$body` with `$net` bound to the store's net, whatever its tier.
-macro_rules! with_net {
-    ($store:expr, $net:ident => $body:expr) => {
-        match $store {
-            PolarStore::T10($net) => $body,
-            PolarStore::T12($net) => $body,
-            PolarStore::T14($net) => $body,
-            PolarStore::T17($net) => $body,
-        }
-    };
-}
+/// The largest valence a polar cap may reach at its deepest level (its net
+/// then takes `17·2^20·size_of::<R>()` bytes: 142 MB in f64).
+pub const MAX_POLAR_VALENCE: usize = 1 << 20;
 
 /// Evaluation state, sized for one plan.
 pub struct Evaluator<R: Real> {
@@ -189,7 +170,10 @@ pub struct Evaluator<R: Real> {
     levels: Vec<Vec<Point3<R>>>,
     /// The analysed level's vertices followed by the phantom points.
     work: Vec<Point3<R>>,
-    polar: Option<PolarStore<R>>,
+    /// Storage of the polar nets (links 1..5, roots), sized for the largest
+    /// cap of the plan and reused by every cap.
+    polar_links: Vec<Point3<R>>,
+    polar_roots: Vec<[R; 2]>,
     links: Vec<[R; 3]>,
     cnet: Vec<[R; 3]>,
     cc: Vec<Point3<R>>,
@@ -203,28 +187,17 @@ impl<R: Real> Evaluator<R> {
         let depth = plan.options.depth;
         let mut need = 0usize;
         for p in &plan.polar {
-            let needed = p
-                .valence
-                .checked_shl(depth)
-                .filter(|x| x >> depth == p.valence);
-            match needed {
-                Some(x) if x <= POLAR_TIERS[3] => need = need.max(x),
-                _ => {
+            match PolarNetBuf::<R>::capacity_for(p.valence, depth) {
+                Some(x) if x <= MAX_POLAR_VALENCE => need = need.max(x),
+                other => {
                     return Err(EvalError::CapacityExceeded {
                         vertex: p.vertex,
-                        needed: needed.unwrap_or(usize::MAX),
-                        max: POLAR_TIERS[3],
+                        needed: other.unwrap_or(usize::MAX),
+                        max: MAX_POLAR_VALENCE,
                     })
                 }
             }
         }
-        let polar = match need {
-            0 => None,
-            x if x <= POLAR_TIERS[0] => Some(PolarStore::T10(Box::new(PolarNet::empty()))),
-            x if x <= POLAR_TIERS[1] => Some(PolarStore::T12(Box::new(PolarNet::empty()))),
-            x if x <= POLAR_TIERS[2] => Some(PolarStore::T14(Box::new(PolarNet::empty()))),
-            _ => Some(PolarStore::T17(Box::new(PolarNet::empty()))),
-        };
         let mut levels = vec![vec![Point3::ZERO; plan.input_vertices]];
         for s in &plan.steps {
             levels.push(vec![Point3::ZERO; s.len()]);
@@ -234,7 +207,8 @@ impl<R: Real> Evaluator<R> {
         Ok(Evaluator {
             levels,
             work: vec![Point3::ZERO; plan.working_points()],
-            polar,
+            polar_links: vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(need)],
+            polar_roots: vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(need)],
             links: vec![[R::ZERO; 3]; 3 * max_n],
             cnet: vec![[R::ZERO; 3]; 6 * max_ev],
             cc: vec![Point3::ZERO; CcCap::<R>::storage_len(max_ev.max(3))],
@@ -320,54 +294,78 @@ impl<R: Real> Evaluator<R> {
             *d = self.work[i as usize].0;
         }
         let pole = self.work[p.pole as usize].0;
-        let links = &self.links;
-        let Some(store) = self.polar.as_mut() else {
-            return Ok(());
-        };
         let depth = plan.options.depth;
         let n_in = n >> p.pre;
-        with_net!(store, net => {
-            let (l1, rest) = links.split_at(n);
-            let (l2, l3) = rest.split_at(n);
-            net.reset(pole, &[l1, l2, &l3[..n]]).map_err(kernel)?;
-            let jet = PoleJet::of(&**net);
-            let limit = jet.limit();
-            let geometry = jet.geometry().ok();
-            for m in 1..=depth {
-                net.step(if m == 1 { p.first } else { FirstStep::Plain })
-                    .map_err(kernel)?;
-                let cols = net.valence();
-                // Columns of this level per input triangle.
-                let per = cols / n_in.max(1);
-                let scale = 1.0 / (1u64 << (m + p.pre)) as f64;
-                for span in 0..2 {
-                    let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
-                    for c in 0..cols {
-                        let patch = net.ring_patch(span, c).map_err(kernel)?;
-                        let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
-                        let (v0, v1) = (((c % per) as f64) / per as f64, ((c % per) + 1) as f64 / per as f64);
-                        let inner = if span == 0 { 1 << 3 } else { 0 };
-                        let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
-                        let chart = if r1 <= 1.0 || p.quads.is_empty() {
-                            FaceChart { face: tri, corner: None, map: Affine::IDENTITY }
-                        } else {
-                            p.quads.get(c >> m).copied().unwrap_or(FaceChart::input(tri))
-                        };
-                        let rect = if r1 <= 1.0 { [r0, r1, v0, v1] } else { [r0 - 1.0, r1 - 1.0, v0, v1] };
-                        sink.patch(&record(PatchKind::Polar, m + p.pre, &chart, rect, patch, finer, hole, limit, Some(index)));
-                    }
+        let (l1, rest) = self.links.split_at(n.min(self.links.len()));
+        let (l2, l3) = rest.split_at(n.min(rest.len()));
+        let mut net = PolarNetBuf::new(
+            pole,
+            &[l1, l2, &l3[..n.min(l3.len())]],
+            &mut self.polar_links,
+            &mut self.polar_roots,
+        )
+        .map_err(kernel)?;
+        let jet = PoleJet::of_buf(&net);
+        let limit = jet.limit();
+        let geometry = jet.geometry().ok();
+        for m in 1..=depth {
+            net.step(if m == 1 { p.first } else { FirstStep::Plain })
+                .map_err(kernel)?;
+            let cols = net.valence();
+            // Columns of this level per input triangle.
+            let per = cols / n_in.max(1);
+            let scale = 1.0 / (1u64 << (m + p.pre)) as f64;
+            for span in 0..2 {
+                let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
+                for c in 0..cols {
+                    let patch = net.ring_patch(span, c).map_err(kernel)?;
+                    let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
+                    let (v0, v1) = (
+                        ((c % per) as f64) / per as f64,
+                        ((c % per) + 1) as f64 / per as f64,
+                    );
+                    let inner = if span == 0 { 1 << 3 } else { 0 };
+                    let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
+                    let chart = if r1 <= 1.0 || p.quads.is_empty() {
+                        FaceChart {
+                            face: tri,
+                            corner: None,
+                            map: Affine::IDENTITY,
+                        }
+                    } else {
+                        p.quads
+                            .get(c >> m)
+                            .copied()
+                            .unwrap_or(FaceChart::input(tri))
+                    };
+                    let rect = if r1 <= 1.0 {
+                        [r0, r1, v0, v1]
+                    } else {
+                        [r0 - 1.0, r1 - 1.0, v0, v1]
+                    };
+                    sink.patch(&record(
+                        PatchKind::Polar,
+                        m + p.pre,
+                        &chart,
+                        rect,
+                        patch,
+                        finer,
+                        hole,
+                        limit,
+                        Some(index),
+                    ));
                 }
             }
-            sink.cap(&CapRecord {
-                index,
-                vertex: Some(p.vertex),
-                face: None,
-                scheme: Scheme::C2ps,
-                valence: n_in,
-                limit,
-                normal: geometry.map(|g| g.normal),
-                principal_curvatures: geometry.map(|g| g.principal),
-            });
+        }
+        sink.cap(&CapRecord {
+            index,
+            vertex: Some(p.vertex),
+            face: None,
+            scheme: Scheme::C2ps,
+            valence: n_in,
+            limit,
+            normal: geometry.map(|g| g.normal),
+            principal_curvatures: geometry.map(|g| g.principal),
         });
         Ok(())
     }
