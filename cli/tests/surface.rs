@@ -703,14 +703,17 @@ fn bad_meshes_fail_cleanly() {
         expect_failure(d, label, content.as_bytes(), &[], needle);
     }
     expect_failure(d, "not-utf8", b"v 0 0 0\n\xff\xfe\n", &[], "not UTF-8");
-    // A pole too deep for the largest net: the evaluator's capacity error.
-    let globe = obj_text(&samples::globe(8, 7), Corners::Plain);
+    // A pole too deep for the largest net: the evaluator's capacity error
+    // (valence 32·2^16 = 2^21 beyond the library's limit).
+    let globe = obj_text(&samples::globe(32, 7), Corners::Plain);
+    let max = capdiv_mesh::evaluate::MAX_POLAR_VALENCE;
+    assert!(32 << 16 > max);
     expect_failure(
         d,
         "capacity",
         globe.as_bytes(),
         &["--depth", "16"],
-        "at most 131072 is supported",
+        &format!("at most {max} is supported"),
     );
     // Options.
     expect_failure(d, "depth", globe.as_bytes(), &["--depth", "17"], "--depth");
