@@ -10,7 +10,7 @@ pub const BSPLINE_TO_BEZIER_CUBIC: [[i32; 4]; 4] =
 
 /// The 4 Bézier coefficients of one uniform cubic span (the rows of
 /// [`BSPLINE_TO_BEZIER_CUBIC`] written out, zeros skipped).
-#[inline(always)]
+#[inline]
 fn span<R: Real>(p: [Point3<R>; 4], third: R, sixth: R) -> [Point3<R>; 4] {
     let two = R::from_f64(2.0);
     let four = R::from_f64(4.0);
