@@ -484,6 +484,44 @@ fn closed_inputs_give_closed_oriented_objs() {
     assert_eq!(v as i64 - e as i64 + f as i64, 0);
 }
 
+/// f32 output near deep poles: the hand (finger-tip poles of valence 8, a
+/// wrist pole of valence 26) at depth 5 has ring columns closer together than
+/// f32 rounding separates; welded by the f64 surface's connectivity it is
+/// closed and has exactly the f64 output's vertices, faces and edges.
+#[test]
+fn deep_f32_objs_weld_like_f64() {
+    let dir = tempdir();
+    let path = write(
+        dir.path(),
+        "hand.obj",
+        &obj_text(&samples::hand(), Corners::Plain),
+    );
+    let counts = |precision: &str| {
+        let run = capdiv(
+            &[
+                "surface",
+                "--quiet",
+                "--format",
+                "obj",
+                "--depth",
+                "5",
+                "--grid",
+                "2",
+                "--precision",
+                precision,
+                s(&path),
+            ],
+            None,
+        );
+        run.assert_ok();
+        assert_closed_oriented(&run.stdout_str(), precision)
+    };
+    let f64_counts = counts("f64");
+    assert_eq!(counts("f32"), f64_counts);
+    let (v, e, f) = f64_counts;
+    assert_eq!(v as i64 - e as i64 + f as i64, 2);
+}
+
 #[test]
 fn obj_vertices_lie_on_the_patches() {
     // Every patch corner b_00 evaluated by the library is an OBJ vertex (to

@@ -31,8 +31,8 @@ use crate::Scalar;
 use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj};
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, tessellate, write_obj, BadEdge, EdgeFault, Face, TessPatch,
-    Tessellation,
+    is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
+    TessPatch, Tessellation,
 };
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
@@ -44,8 +44,9 @@ use std::time::Instant;
 
 /// Weld tolerance of `f64` output, relative to the bounding-box size.
 pub const WELD_F64: f64 = 1e-9;
-/// Weld tolerance of `f32` output, relative to the bounding-box size.
-pub const WELD_F32: f64 = 1e-4;
+/// Weld tolerance of `f32` output when the f64 guide does not match (it
+/// always does for `surface`), relative to the bounding-box size.
+pub const WELD_F32: f64 = 1e-5;
 
 /// Valences that take a user EG table.
 pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
@@ -142,7 +143,14 @@ fn produce<R: Scalar>(
             (to_json(&out, args.pretty), report)
         }
         PatchFormat::Obj | PatchFormat::Png => {
-            let tess = tessellate_surface(&surface, mesh, grid, weld);
+            // f32 output is welded where the f64 surface welds (see
+            // `tessellate_surface`); f64 output needs no guide.
+            let guide = if precision == "f32" {
+                Some(build::<f64>(name, mesh, args.depth, tables, "f64")?)
+            } else {
+                None
+            };
+            let tess = tessellate_surface(&surface, mesh, grid, weld, guide.as_ref());
             let report = report(name, &surface.summary, Some(&tess.info));
             let bytes = if args.format == PatchFormat::Obj {
                 let title = format!(
@@ -517,23 +525,48 @@ pub struct Tess<R> {
     pub info: TessInfo,
 }
 
-/// Tessellates and welds the surface's patches (see the module doc).
+/// Tessellates and welds the surface's patches (see the module doc). With a
+/// `guide` (the same surface in f64, for f32 output), samples weld where the
+/// guide's samples weld within [`WELD_F64`] of the size: near a deep pole the
+/// f32 samples lie closer together than f32 rounding lets any single
+/// tolerance separate (measured: the hand at depth 4 does not close with any
+/// f32 tolerance from 1e-4 to 1e-6), while the f64 connectivity is exact.
 pub fn tessellate_surface<R: Scalar>(
     surface: &Surface<R>,
     mesh: &MeshInput,
     grid: usize,
     factor: f64,
+    guide: Option<&Surface<f64>>,
 ) -> Tess<R> {
     let start = Instant::now();
     let (tolerance, size) = weld_tolerance(mesh, factor);
-    let patches = surface.patches.iter().map(|p| TessPatch {
-        geometry: p.geometry,
-        finer: p.finer,
-        hole: p.hole,
-        hole_point: p.hole_point,
-        tag: p.level,
-    });
-    let t = tessellate(patches, grid, R::from_f64(tolerance));
+    fn tess_patches<S: Copy>(s: &Surface<S>) -> impl Iterator<Item = TessPatch<S>> + '_ {
+        s.patches.iter().map(|p| TessPatch {
+            geometry: p.geometry,
+            finer: p.finer,
+            hole: p.hole,
+            hole_point: p.hole_point,
+            tag: p.level,
+        })
+    }
+    let t = match guide {
+        Some(g) => {
+            let (guide_tolerance, _) = weld_tolerance(mesh, WELD_F64);
+            tessellate_guided(
+                tess_patches(surface),
+                tess_patches(g),
+                grid,
+                guide_tolerance,
+                R::from_f64(tolerance),
+            )
+        }
+        None => tessellate(tess_patches(surface), grid, R::from_f64(tolerance)),
+    };
+    // Report the tolerance that decided the welding.
+    let (tolerance, factor) = match guide {
+        Some(_) => (weld_tolerance(mesh, WELD_F64).0, WELD_F64),
+        None => (tolerance, factor),
+    };
     let triangles = t.faces.iter().filter(|f| matches!(f, Face::Tri(_))).count();
     let info = TessInfo {
         grid,

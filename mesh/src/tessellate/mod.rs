@@ -161,11 +161,50 @@ pub fn tessellate<R: Real>(
     grid: usize,
     weld_tolerance: R,
 ) -> Tessellation<R> {
-    let grid = grid.max(1);
-    let mut raw = sample::Raw::new(grid);
+    let raw = sample_all(patches, grid);
+    let rep = weld::representatives(&raw.positions, weld_tolerance);
+    assemble(raw, &rep)
+}
+
+/// [`tessellate`] of `patches`, welded where the samples of `guide` weld:
+/// `guide` is the same patchwork in a higher precision (e.g. `f64` beside an
+/// `f32` evaluation). Near a deep cap the samples of an `f32` surface are
+/// closer together than `f32` rounding lets any one tolerance tell apart;
+/// the connectivity of the `f64` surface does not depend on that. If the
+/// two patchworks do not have the same samples, `patches` are welded on their
+/// own with `fallback_tolerance`.
+pub fn tessellate_guided<R: Real, S: Real>(
+    patches: impl IntoIterator<Item = TessPatch<R>>,
+    guide: impl IntoIterator<Item = TessPatch<S>>,
+    grid: usize,
+    guide_tolerance: S,
+    fallback_tolerance: R,
+) -> Tessellation<R> {
+    let raw = sample_all(patches, grid);
+    let guide = sample_all(guide, grid);
+    let rep = if guide.positions.len() == raw.positions.len() && guide.faces == raw.faces {
+        weld::representatives(&guide.positions, guide_tolerance)
+    } else {
+        weld::representatives(&raw.positions, fallback_tolerance)
+    };
+    assemble(raw, &rep)
+}
+
+/// Every patch's samples and faces, unwelded.
+fn sample_all<R: Real>(
+    patches: impl IntoIterator<Item = TessPatch<R>>,
+    grid: usize,
+) -> sample::Raw<R> {
+    let mut raw = sample::Raw::new(grid.max(1));
     for p in patches {
         raw.push(&p);
     }
+    raw
+}
+
+/// Welds `raw` into the tessellation: sample `k` becomes the vertex of its
+/// representative `rep[k] ≤ k` (as [`weld::representatives`] returns them).
+fn assemble<R: Real>(raw: sample::Raw<R>, rep: &[u32]) -> Tessellation<R> {
     let sample::Raw {
         positions: raw_pos,
         normals: raw_nrm,
@@ -180,7 +219,6 @@ pub fn tessellate<R: Real>(
     );
 
     // Welding: raw sample → representative sample → compact vertex index.
-    let rep = weld::representatives(&raw_pos, weld_tolerance);
     let mut index = vec![u32::MAX; samples];
     let mut positions = Vec::new();
     let mut normals = Vec::new();
