@@ -1,5 +1,6 @@
 //! Bézier patch evaluation (de Casteljau) against the Bernstein-sum definition.
 
+use capdiv::bezier::BSPLINE_TO_BEZIER_CUBIC;
 use capdiv::{Error, Point3, TensorPatch};
 
 fn binom(n: usize, k: usize) -> f64 {
@@ -94,4 +95,70 @@ fn collapsed_patch_has_no_normal() {
         points: [[Point3::new(1.0, 2.0, 3.0); 4]; 4],
     };
     assert_eq!(p.normal(0.5, 0.5), Err(Error::Degenerate));
+}
+
+/// The conversion is bit for bit the dense product `M d Mᵀ` with the
+/// weights `k/6` (written here as the literal double sum, zeros included),
+/// in f32 and f64: the firmware's logged sums are compared with tolerances
+/// of a few ulps, so the kernel's rounding must not drift.
+#[test]
+fn bspline_to_bezier_is_bit_for_bit_the_dense_product() {
+    // Literal indices on purpose: this is the textbook double sum.
+    #[allow(clippy::needless_range_loop)]
+    fn dense<R: capdiv::Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>; 4]; 4] {
+        let m = |a: usize, k: usize| R::ratio(BSPLINE_TO_BEZIER_CUBIC[a][k], 6);
+        let mut half = [[Point3::ZERO; 4]; 4];
+        for k in 0..4 {
+            for b in 0..4 {
+                let mut acc = Point3::ZERO;
+                for l in 0..4 {
+                    acc += d[k][l] * m(b, l);
+                }
+                half[k][b] = acc;
+            }
+        }
+        let mut out = [[Point3::ZERO; 4]; 4];
+        for a in 0..4 {
+            for b in 0..4 {
+                let mut acc = Point3::ZERO;
+                for k in 0..4 {
+                    acc += half[k][b] * m(a, k);
+                }
+                out[a][b] = acc;
+            }
+        }
+        out
+    }
+    fn check<R: capdiv::Real + core::fmt::Debug>(seed: u64) {
+        let mut x = seed;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            R::from_f64((x % 20001) as f64 / 997.0 - 10.0)
+        };
+        let mut d = [[Point3::ZERO; 4]; 4];
+        for row in d.iter_mut() {
+            for p in row.iter_mut() {
+                *p = Point3::new(next(), next(), next());
+            }
+        }
+        let got = capdiv::bezier::bspline_to_bezier_cubic(&d);
+        let want = dense(&d);
+        for a in 0..4 {
+            for b in 0..4 {
+                for c in 0..3 {
+                    assert_eq!(
+                        got[a][b].0[c].to_f64().to_bits(),
+                        want[a][b].0[c].to_f64().to_bits(),
+                        "seed {seed} [{a}][{b}]"
+                    );
+                }
+            }
+        }
+    }
+    for seed in 1..2000u64 {
+        check::<f32>(seed);
+        check::<f64>(seed);
+    }
 }

@@ -8,37 +8,45 @@ use crate::real::Real;
 pub const BSPLINE_TO_BEZIER_CUBIC: [[i32; 4]; 4] =
     [[1, 4, 1, 0], [0, 4, 2, 0], [0, 2, 4, 0], [0, 1, 4, 1]];
 
-/// The 4 Bézier coefficients of one uniform cubic span (the rows of
-/// [`BSPLINE_TO_BEZIER_CUBIC`] written out, zeros skipped).
+/// The weights `k/6` of [`BSPLINE_TO_BEZIER_CUBIC`] that are not zero.
+#[derive(Clone, Copy)]
+struct Sixths<R> {
+    one: R,
+    two: R,
+    four: R,
+}
+
+/// The 4 Bézier coefficients of one uniform cubic span: the rows of
+/// [`BSPLINE_TO_BEZIER_CUBIC`]`/6` applied to `p`, the zero terms skipped and
+/// the others summed in row order, so the result is bit for bit the dense
+/// product's (adding a zero product is exact).
 #[inline]
-fn span<R: Real>(p: [Point3<R>; 4], third: R, sixth: R) -> [Point3<R>; 4] {
-    let two = R::from_f64(2.0);
-    let four = R::from_f64(4.0);
+fn span<R: Real>(p: [Point3<R>; 4], w: Sixths<R>) -> [Point3<R>; 4] {
     [
-        (p[0] + p[1] * four + p[2]) * sixth,
-        (p[1] * two + p[2]) * third,
-        (p[1] + p[2] * two) * third,
-        (p[1] + p[2] * four + p[3]) * sixth,
+        p[0] * w.one + p[1] * w.four + p[2] * w.one,
+        p[1] * w.four + p[2] * w.two,
+        p[1] * w.two + p[2] * w.four,
+        p[1] * w.one + p[2] * w.four + p[3] * w.one,
     ]
 }
 
 /// The bicubic Bézier net of one uniform bicubic B-spline patch with control
 /// points `d[k][l]`: `b = M d Mᵀ` with `M` = [`BSPLINE_TO_BEZIER_CUBIC`] / 6,
-/// applied along `v` (each row), then along `u` (each column).
+/// applied along `v` (each row), then along `u` (each column). The weights
+/// are computed once per call (no division per term).
 pub fn bspline_to_bezier_cubic<R: Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>; 4]; 4] {
-    let third = R::ratio(1, 3);
-    let sixth = R::ratio(1, 6);
+    let w = Sixths {
+        one: R::ratio(1, 6),
+        two: R::ratio(2, 6),
+        four: R::ratio(4, 6),
+    };
     let mut half = [[Point3::ZERO; 4]; 4];
     for (h, row) in half.iter_mut().zip(d) {
-        *h = span(*row, third, sixth);
+        *h = span(*row, w);
     }
     let mut out = [[Point3::ZERO; 4]; 4];
     for b in 0..4 {
-        let col = span(
-            [half[0][b], half[1][b], half[2][b], half[3][b]],
-            third,
-            sixth,
-        );
+        let col = span([half[0][b], half[1][b], half[2][b], half[3][b]], w);
         for (a, p) in col.into_iter().enumerate() {
             out[a][b] = p;
         }
