@@ -1,0 +1,76 @@
+//! Instruction-count probe for callgrind (reproducible on a busy machine):
+//! builds a generated mesh, analyses it once and evaluates it once in f64.
+//!
+//! `cost_probe regular|features FACES`; run under
+//! `valgrind --tool=callgrind --toggle-collect='*SurfacePlan*new*'` (analysis)
+//! or `--toggle-collect='*Evaluator*evaluate*'` (evaluation) and divide by the
+//! faces or patches it prints. `regular`: a torus, every face a regular
+//! patch; `features`: copies of a mushroom (two valence-12 poles), a rounded
+//! cube (eight valence-3 EG caps) and a valence-7 extraordinary disk
+//! (Catmull-Clark cap), caps to depth 3 (as `benches/surface.rs`).
+use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions};
+use capdiv_mesh::{SurfacePlan, SurfaceSink, Topology};
+
+#[derive(Default)]
+struct Count(usize, f64);
+impl SurfaceSink<f64> for Count {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        self.0 += 1;
+        self.1 += p.domain[1];
+    }
+    fn cap(&mut self, c: &CapRecord<f64>) {
+        self.1 += c.limit.0[0];
+    }
+}
+
+fn features(faces: usize) -> MeshInput {
+    let parts = [
+        samples::mushroom(),
+        samples::rounded_cube(6),
+        samples::extraordinary_disk(7, 5),
+    ];
+    let per: usize = parts.iter().map(|m| m.faces.len()).sum();
+    let mut out = MeshInput::default();
+    for k in 0..faces.div_ceil(per) {
+        for (i, m) in parts.iter().enumerate() {
+            let base = out.vertices.len() as u32;
+            let dx = 10.0 * (k * parts.len() + i) as f64;
+            out.vertices
+                .extend(m.vertices.iter().map(|p| [p[0] + dx, p[1], p[2]]));
+            out.faces.extend(
+                m.faces
+                    .iter()
+                    .map(|f| f.iter().map(|&v| v + base).collect()),
+            );
+        }
+    }
+    out
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let kind = args.get(1).map(String::as_str).unwrap_or("regular");
+    let faces: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10_000);
+    let mesh = if kind == "features" {
+        features(faces)
+    } else {
+        let side = (faces as f64).sqrt().ceil() as usize;
+        samples::torus(side, side)
+    };
+    let topo = Topology::new(&mesh).expect("valid mesh");
+    let options = PlanOptions {
+        depth: 3,
+        ..Default::default()
+    };
+    let plan = SurfacePlan::new(&topo, options).expect("plan");
+    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+    let mut count = Count::default();
+    ev.evaluate(&plan, &mesh.vertices, &mut count)
+        .expect("evaluate");
+    println!(
+        "{kind}: {} faces, {} patches ({})",
+        mesh.faces.len(),
+        count.0,
+        count.1
+    );
+}
