@@ -23,7 +23,12 @@ fn max_coord(pts: &[[f64; 3]]) -> f64 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a couple of cases, no regression files (isolation).
+        cases: if cfg!(miri) { 2 } else { 256 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
 
     /// (4) applied to R c equals (3) of c, n = 3..10, arbitrary c-nets.
     /// Tolerance: the (4) weights have L1 norm ≤ 4.04 (n = 10; 1.02 for n = 3),

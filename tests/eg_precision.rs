@@ -56,7 +56,12 @@ fn worst_relative(ext: &ExtNet, steps: usize) -> f64 {
 const F32_BOUND: f64 = 5e-7;
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a couple of cases, no regression files (isolation).
+        cases: if cfg!(miri) { 2 } else { 256 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
     #[test]
     fn f32_tracks_f64(n in 3usize..=5, seed in any::<u64>(), noise in 0.0f64..1.0) {
         let mut rng = Rng(seed | 1);

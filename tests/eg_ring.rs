@@ -160,7 +160,12 @@ fn rings_join_c2_n3_n4_n5_three_rings() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a couple of cases, no regression files (isolation).
+        cases: if cfg!(miri) { 2 } else { 256 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
     /// Random extended c-nets of the valences with rules (3, 4, 5), two rings:
     /// C² across ring boundaries, sector boundaries and the bi-3 surface.
     #[test]

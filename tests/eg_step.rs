@@ -17,7 +17,12 @@ fn flat(net: &DNet<f64>) -> Vec<[f64; 3]> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a couple of cases, no regression files (isolation).
+        cases: if cfg!(miri) { 2 } else { 256 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
 
     /// step(A d + t) = A step(d) + t (with c0 mapped too), n = 3, 4, 5, three
     /// steps. Every new node is an affine combination (weights sum to 1 by

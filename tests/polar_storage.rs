@@ -210,7 +210,12 @@ fn case() -> impl Strategy<Value = (usize, usize, Vec<f64>, u64, Vec<bool>, Firs
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a couple of cases, no regression files (isolation).
+        cases: if cfg!(miri) { 2 } else { 96 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn same_bits_as_polar_net_f64((n, count, noise, seed, ops, first) in case()) {
