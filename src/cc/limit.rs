@@ -42,12 +42,25 @@ impl<R: Real> CcCap<'_, R> {
         e + acc
     }
 
+    /// [`CcCap::limit`], or [`Error::NonFinite`] when it overflows (only
+    /// possible for nets with coordinates of opposite signs near `MAX/2`:
+    /// `c − e` is formed first).
+    pub fn try_limit(&self) -> Result<Point3<R>, Error> {
+        let p = self.limit();
+        if p.is_finite() {
+            Ok(p)
+        } else {
+            Err(Error::NonFinite)
+        }
+    }
+
     /// The limit tangents `(t1, t2)` at the center (module doc): `t1` along
     /// spoke 0, `t2` a quarter turn counter-clockwise from it in the
     /// characteristic map, so `t1 × t2` points to the side of `∂u × ∂v` of
     /// the ring patches. Not normalized (their common scale depends on the
     /// net). [`Error::ValenceUnsupported`] when the odd part of `n` exceeds
-    /// [`crate::trig::MAX_ODD_PART`].
+    /// [`crate::trig::MAX_ODD_PART`]; [`Error::NonFinite`] when a tangent
+    /// overflows (coordinates near `MAX/(4n)` and beyond).
     pub fn limit_tangents(&self) -> Result<(Point3<R>, Point3<R>), Error> {
         let n = self.n;
         let unsupported = Error::ValenceUnsupported { valence: n };
@@ -70,18 +83,25 @@ impl<R: Real> CcCap<'_, R> {
             t2 += edge * R::from_f64(a_n * sn) + face * R::from_f64(sn + snn);
             (c, sn) = (cn, snn);
         }
-        Ok((t1, t2))
+        if t1.is_finite() && t2.is_finite() {
+            Ok((t1, t2))
+        } else {
+            Err(Error::NonFinite)
+        }
     }
 
     /// The unit limit normal at the center, `t1 × t2 / |t1 × t2|`
-    /// ([`CcCap::limit_tangents`]); [`Error::Degenerate`] if it vanishes,
-    /// [`Error::ValenceUnsupported`] as `limit_tangents`.
+    /// ([`CcCap::limit_tangents`]); [`Error::Degenerate`] if it vanishes (or
+    /// `t1 × t2` under- or overflows), [`Error::ValenceUnsupported`] and
+    /// [`Error::NonFinite`] as `limit_tangents`.
     pub fn normal(&self) -> Result<Point3<R>, Error> {
         let (t1, t2) = self.limit_tangents()?;
         let m = t1.cross(t2);
         let len = m.norm();
-        if len > R::ZERO && len.is_finite() {
-            Ok(m * (R::ONE / len))
+        let unit = m * (R::ONE / len);
+        // `unit` is not finite when `len` is subnormal (its reciprocal overflows).
+        if len > R::ZERO && len.is_finite() && unit.is_finite() {
+            Ok(unit)
         } else {
             Err(Error::Degenerate)
         }

@@ -22,7 +22,7 @@
 use super::net::{flat_links, held_after_step, validate, FirstStep, MAX_STORED_LINKS};
 use super::ring::{Ring, RingPatchesView};
 use super::rts::rts_in_place;
-use super::step::{c2ps_in_place, check_step};
+use super::step::{c2ps_in_place, check_step, step_fits};
 use crate::bezier::BicubicPatch;
 use crate::error::Error;
 use crate::point::Point3;
@@ -215,11 +215,13 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
 
     /// One C²PS step, as [`PolarNet::step`]. [`Error::CapacityExceeded`] when
     /// `2N` is above [`Self::capacity`], [`Error::NotEnoughLinks`] on an
-    /// [`Self::empty`] net; the net is then unchanged.
+    /// [`Self::empty`] net, [`Error::NonFinite`] when the step could overflow
+    /// (as [`PolarNet::step`]); the net is then unchanged.
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
         let n = self.valence;
         // 2n <= cap <= root storage: the roots double in place.
         check_step(self.held, n, self.cap)?;
+        step_fits(self.pole, [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])), n)?;
         let roots = self.roots.get_mut(..2 * n).unwrap_or_default();
         self.primitive = double_ring(roots, n, self.primitive);
         let new_held = held_after_step(self.held);
@@ -239,12 +241,20 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
     }
 
     /// One RTS step, as [`PolarNet::rts_step`]: valence and level unchanged,
-    /// the links held grow as for C²PS.
+    /// the links held grow as for C²PS; a net the step could overflow is left
+    /// unchanged.
     pub fn rts_step(&mut self) {
+        let _ = self.try_rts_step();
+    }
+
+    /// [`Self::rts_step`], reporting [`Error::NonFinite`] as
+    /// [`PolarNet::try_rts_step`] does; the net is then unchanged.
+    pub fn try_rts_step(&mut self) -> Result<(), Error> {
         if self.held < 2 {
-            return; // an empty net: nothing to refine
+            return Ok(()); // an empty net: nothing to refine
         }
         let n = self.valence;
+        step_fits(self.pole, [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])), n)?;
         let new_held = held_after_step(self.held);
         rts_in_place(
             &mut self.pole,
@@ -254,6 +264,7 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
             self.roots.get(..n).unwrap_or_default(),
         );
         self.held = new_held;
+        Ok(())
     }
 
     /// Number of patches in the current ring, `2N`.

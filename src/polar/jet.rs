@@ -51,6 +51,27 @@ impl<R: Real> PoleJet<R> {
         Self::from_parts(net.pole(), net.link(1).unwrap_or(&[]), net.roots())
     }
 
+    /// [`Self::of`], or [`Error::NonFinite`] when a coefficient overflows
+    /// (possible only for nets with coordinates above `MAX/(3·N)`; every
+    /// coefficient is below `3·m` for coordinates below `m`, the Fourier sums
+    /// below `2·N·m`).
+    pub fn try_of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Result<Self, Error> {
+        Self::of(net).finite()
+    }
+
+    /// [`Self::of_buf`], or [`Error::NonFinite`] as [`Self::try_of`].
+    pub fn try_of_buf(net: &PolarNetBuf<'_, R>) -> Result<Self, Error> {
+        Self::of_buf(net).finite()
+    }
+
+    fn finite(self) -> Result<Self, Error> {
+        if self.p.iter().all(Point3::is_finite) {
+            Ok(self)
+        } else {
+            Err(Error::NonFinite)
+        }
+    }
+
     /// The jet from the pole, the 1-link and the roots of its valence
     /// (`roots.len() = link1.len()`): the one implementation behind
     /// [`Self::of`] and [`Self::of_buf`].
@@ -76,7 +97,10 @@ impl<R: Real> PoleJet<R> {
         self.p[0]
     }
 
-    /// Normal and curvatures; [`Error::Degenerate`] when `p1 × p2` vanishes.
+    /// Normal and curvatures; [`Error::Degenerate`] when `p1 × p2` vanishes
+    /// (or under- or overflows: `|p1|·|p2|` outside about `[√MIN_POSITIVE,
+    /// √MAX]`), [`Error::NonFinite`] when a curvature overflows (a net far
+    /// smaller than its tangents) or the jet is not finite.
     pub fn geometry(&self) -> Result<PoleGeometry<R>, Error> {
         let [_, p1, p2, p3, p4, p5] = self.p;
         let cross = p1.cross(p2);
@@ -87,6 +111,10 @@ impl<R: Real> PoleJet<R> {
             return Err(Error::Degenerate);
         }
         let normal = cross * (R::ONE / len);
+        if !normal.is_finite() {
+            // `len` subnormal: its reciprocal overflows.
+            return Err(Error::Degenerate);
+        }
         let two = R::from_f64(2.0);
         let e2 = normal.dot((p3 + p4) * two);
         let g2 = normal.dot((p3 - p4) * two);
@@ -95,11 +123,18 @@ impl<R: Real> PoleJet<R> {
         let mean = (e1 * g2 - two * f1 * f2 + g1 * e2) / (two * det);
         let disc = mean * mean - gaussian;
         let root = if disc > R::ZERO { disc.sqrt() } else { R::ZERO };
+        let principal = [mean + root, mean - root];
+        if ![gaussian, mean, principal[0], principal[1]]
+            .iter()
+            .all(|c| c.is_finite())
+        {
+            return Err(Error::NonFinite);
+        }
         Ok(PoleGeometry {
             normal,
             gaussian,
             mean,
-            principal: [mean + root, mean - root],
+            principal,
         })
     }
 }

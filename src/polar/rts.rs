@@ -4,16 +4,32 @@
 use super::fourier::Fourier;
 use super::index::{add_mod, at, put};
 use super::net::{held_after_step, PolarNet};
+use super::step::step_fits;
+use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
 
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One RTS step. Valence and level are unchanged; the links held grow as
     /// for C²PS (old links up to `K` give new links up to `2K−1`, at most 5).
+    /// A net the step could overflow (a coordinate of the pole or links 1..3
+    /// above `MAX/(16·N)`) is left unchanged: [`Self::try_rts_step`] reports it.
     pub fn rts_step(&mut self) {
+        let _ = self.try_rts_step();
+    }
+
+    /// [`Self::rts_step`], reporting [`Error::NonFinite`] when the step could
+    /// overflow (as [`Self::step`]); the net is then unchanged. On an empty
+    /// net: `Ok`, nothing done.
+    pub fn try_rts_step(&mut self) -> Result<(), Error> {
         if self.held < 2 {
-            return; // an empty net: nothing to refine
+            return Ok(()); // an empty net: nothing to refine
         }
+        step_fits(
+            self.pole,
+            [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])),
+            self.valence(),
+        )?;
         let new_held = held_after_step(self.held);
         let n = self.valence();
         for l in self.links.iter_mut().take(new_held) {
@@ -28,6 +44,7 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
             self.roots.as_slice(),
         );
         self.held = new_held;
+        Ok(())
     }
 }
 

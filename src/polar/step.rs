@@ -20,10 +20,13 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// on the net's first step (level 0), later steps always use rules (1)–(3).
     ///
     /// [`Error::CapacityExceeded`] when `2N > CAP`, [`Error::NotEnoughLinks`]
-    /// on an [`PolarNet::empty`] net; the net is then unchanged.
+    /// on an [`PolarNet::empty`] net, [`Error::NonFinite`] when a coordinate
+    /// of the pole or links 1..3 exceeds `MAX/(16·N)` in magnitude (the step
+    /// could overflow, see [`step_fits`]); the net is then unchanged.
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
         let n = self.valence();
         check_step(self.held, n, CAP)?;
+        step_fits(self.pole, [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])), n)?;
         self.roots.double()?;
         let new_held = held_after_step(self.held);
         for l in self.links.iter_mut().take(new_held) {
@@ -59,6 +62,39 @@ pub(crate) fn check_step(held: usize, n: usize, cap: usize) -> Result<(), Error>
         });
     }
     Ok(())
+}
+
+/// [`Error::NonFinite`] unless a C²PS or RTS step from valence `n` is sure
+/// not to overflow: every coordinate of the pole and of links 1..3 (the only
+/// inputs a step reads) at most `MAX/(16·n)` in magnitude. With `m` that
+/// bound, the Fourier sums of the 1-link stay below `2·n·m` before their
+/// division by `n` (plain sums of up to 32 terms, compensated across blocks),
+/// and every other intermediate (`prev + 6·cur + next`, `q00 + 6·t1 + t2`, the
+/// harmonics) below `8·m`; new points are below `4·m`. Checked before
+/// anything is written.
+pub(crate) fn step_fits<R: Real>(
+    pole: Point3<R>,
+    links: [&[Point3<R>]; 3],
+    n: usize,
+) -> Result<(), Error> {
+    let mut m = R::ZERO;
+    for p in links
+        .iter()
+        .flat_map(|l| l.get(..n).unwrap_or(l))
+        .chain([&pole])
+    {
+        for c in p.0 {
+            let a = c.abs();
+            if a > m {
+                m = a;
+            }
+        }
+    }
+    if (m * R::from_f64(16.0 * n as f64)).is_finite() {
+        Ok(())
+    } else {
+        Err(Error::NonFinite)
+    }
 }
 
 /// Uniform cubic periodic refinement of `u` at old index `j`: `(ũ[2j], ũ[2j+1])`.
