@@ -4,9 +4,10 @@
 //!
 //! Oracle: no panic; on every error the net is bitwise unchanged; both nets
 //! agree bit for bit while they have taken the same successful operations
-//! (the kernel's promise: one code path); for inputs whose coordinates are
-//! at most MAX/2^40, every step, ring patch and jet is finite; an `Ok`
-//! `PoleGeometry` is finite.
+//! (the kernel's promise: one code path); an `Ok` step or RTS step is finite
+//! (the kernel documents `NonFinite` when a step could overflow); an `Ok`
+//! jet (`try_of`) and `PoleGeometry` are finite; for inputs whose
+//! coordinates are at most MAX/2^40, every ring patch and jet is finite.
 #![no_main]
 
 use arbitrary::{Result, Unstructured};
@@ -116,6 +117,25 @@ fn links_finite_buf<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> bool {
         && (1..=net.links_held()).all(|i| all_finite(net.link(i).unwrap_or(&[]).iter().copied()))
 }
 
+/// The net's pole and links are at most MAX/2^40 (finite results expected).
+fn net_small<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> bool {
+    bounded(
+        (1..=net.links_held())
+            .flat_map(|i| net.link(i).unwrap_or(&[]).iter().map(|p| p.0))
+            .chain([net.pole().0]),
+        40,
+    )
+}
+
+fn buf_small<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> bool {
+    bounded(
+        (1..=net.links_held())
+            .flat_map(|i| net.link(i).unwrap_or(&[]).iter().map(|p| p.0))
+            .chain([net.pole().0]),
+        40,
+    )
+}
+
 fn jet_bits<R: FuzzReal>(j: &PoleJet<R>) -> Vec<u64> {
     let mut v = Vec::new();
     for p in j.p {
@@ -148,8 +168,6 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
     let mut net: Box<PolarNet<R, CAP>> = Box::new(PolarNet::empty());
     // Both nets hold the same configuration while `synced`.
     let mut synced = true;
-    // Coordinates of the current configuration are at most MAX/2^40.
-    let mut small = true;
     let mut steps = 0u32;
 
     let ops = u.int_in_range(1..=12u8)?;
@@ -192,10 +210,6 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                     (Ok(()), Ok(())) => {
                         synced = true;
                         steps = 0;
-                        small = bounded(
-                            cfg.links.iter().flatten().copied().chain([cfg.pole]),
-                            40,
-                        );
                     }
                     (Err(e), Err(f)) => assert_eq!(e, f, "net and buf disagree"),
                     (Err(capdiv::Error::CapacityExceeded { .. }), Ok(()))
@@ -217,11 +231,11 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 let rb = buf.step(first);
                 match &rn {
                     Err(e) => assert_eq!(before_n, snap_net(&net), "step error {e:?} changed the net"),
-                    Ok(()) => assert!(!small || links_finite_net(&net), "step not finite"),
+                    Ok(()) => assert!(links_finite_net(&net), "Ok step not finite"),
                 }
                 match &rb {
                     Err(e) => assert_eq!(before_b, snap_buf(&buf), "step error {e:?} changed the buf"),
-                    Ok(()) => assert!(!small || links_finite_buf(&buf), "buf step not finite"),
+                    Ok(()) => assert!(links_finite_buf(&buf), "Ok buf step not finite"),
                 }
                 if rn.is_ok() != rb.is_ok() {
                     synced = false;
@@ -232,15 +246,26 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                     continue;
                 }
                 steps += 1;
-                net.rts_step();
-                buf.rts_step();
-                assert!(!small || links_finite_net(&net), "rts step not finite");
+                let (before_n, before_b) = (snap_net(&net), snap_buf(&buf));
+                let rn = net.try_rts_step();
+                let rb = buf.try_rts_step();
+                match &rn {
+                    Err(e) => assert_eq!(before_n, snap_net(&net), "rts error {e:?} changed the net"),
+                    Ok(()) => assert!(links_finite_net(&net), "Ok rts step not finite"),
+                }
+                match &rb {
+                    Err(e) => assert_eq!(before_b, snap_buf(&buf), "rts error {e:?} changed the buf"),
+                    Ok(()) => assert!(links_finite_buf(&buf), "Ok buf rts step not finite"),
+                }
+                if rn.is_ok() != rb.is_ok() {
+                    synced = false;
+                }
             }
             5 => {
                 let pn = net.ring_patches().map(|r| r.collect::<Vec<_>>());
                 let pb = buf.ring_patches().map(|r| r.collect::<Vec<_>>());
-                for ps in [&pn, &pb].into_iter().flatten() {
-                    if small {
+                for (ps, small) in [(&pn, net_small(&net)), (&pb, buf_small(&buf))] {
+                    if let (Ok(ps), true) = (ps, small) {
                         assert!(ps.iter().all(|p| all_finite(p.points.iter().flatten().copied())));
                     }
                 }
@@ -269,8 +294,17 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 if synced {
                     assert_eq!(jet_bits(&jn), jet_bits(&jb));
                 }
-                check_jet(&jn, small && net.links_held() >= 1);
-                check_jet(&jb, small && buf.links_held() >= 1);
+                check_jet(&jn, net_small(&net));
+                check_jet(&jb, buf_small(&buf));
+                // try_of: Ok only when finite, and then the same jet.
+                match PoleJet::try_of(&net) {
+                    Ok(j) => assert_eq!(jet_bits(&j), jet_bits(&jn)),
+                    Err(_) => assert!(!all_finite(jn.p)),
+                }
+                match PoleJet::try_of_buf(&buf) {
+                    Ok(j) => assert_eq!(jet_bits(&j), jet_bits(&jb)),
+                    Err(_) => assert!(!all_finite(jb.p)),
+                }
             }
         }
         if synced {
