@@ -33,10 +33,9 @@ fn pole_geometry_of_huge_jet_is_finite_or_error() {
 /// about 1e-10, so the components of `t1 × t2` square into the f32 subnormal
 /// range and `|t1 × t2|` loses precision (e5b66d1 made a *subnormal* `|t1 × t2|`
 /// `Degenerate`; here the length itself is normal, its square is not).
-/// Expected: a unit normal (e.g. scale `t1 × t2` by its largest component
-/// before normalizing) or `Error::Degenerate`.
+/// Fixed: `normal` scales `t1 × t2` by its largest component before
+/// normalizing. A second input (level 3, 88 % of unit length) is below.
 #[test]
-#[ignore = "fuzz finding: CcCap<f32>::normal not unit when |t1 x t2|^2 is subnormal (src/cc/limit.rs)"]
 fn cc_normal_of_tiny_flat_net_is_unit() {
     let n = 11;
     let nodes = vec![[0.0009648437f32, -3.90625e-6, 0.0]; 6 * n];
@@ -48,5 +47,30 @@ fn cc_normal_of_tiny_flat_net_is_unit() {
     if let Ok(nrm) = cap.normal() {
         let len = nrm.norm();
         assert!((len - 1.0).abs() < 1e-3, "normal {nrm:?} has length {len}");
+    }
+}
+
+/// `fuzz/kernel_eg_cc`, second input of the same finding: valence 11 (as
+/// the campaign's 12-node prefix, repeated), center `-7.1402575e-17` in every
+/// coordinate; normal was `(0, 0, 0.8838835)` after 3 steps.
+#[test]
+fn cc_normal_of_mixed_scale_net_is_unit() {
+    let c = -7.1402575e-17f32;
+    let a = [0.0, -91.59375, c];
+    let b = [c; 3];
+    let prefix = [a, b, b, a, b, b, a, a, b, b, a, b];
+    for n in 3..=11 {
+        let nodes: Vec<[f32; 3]> = (0..6 * n).map(|i| prefix[i % 12]).collect();
+        let mut storage = vec![Point3::<f32>::ZERO; CcCap::<f32>::storage_len(n)];
+        let mut cap = CcCap::new([c; 3], &nodes, &mut storage).unwrap();
+        for _ in 0..3 {
+            if cap.step().is_err() {
+                break;
+            }
+            if let Ok(nrm) = cap.normal() {
+                let len = nrm.norm();
+                assert!((len - 1.0).abs() < 1e-3, "n = {n}: normal {nrm:?} has length {len}");
+            }
+        }
     }
 }

@@ -100,10 +100,14 @@ impl<R: Real> CcCap<'_, R> {
         let len = m.norm();
         let unit = m * (R::ONE / len);
         // `unit` is not finite when `len` is subnormal (its reciprocal overflows).
-        if len > R::ZERO && len.is_finite() && unit.is_finite() {
-            Ok(unit)
-        } else {
-            Err(Error::Degenerate)
+        if !(len > R::ZERO && len.is_finite() && unit.is_finite()) {
+            return Err(Error::Degenerate);
         }
+        // `|m|²` can be subnormal while `|m|` is not (f32 tangents near 1e-10):
+        // `len` then has lost precision. Normalize `m` scaled by its largest
+        // component instead (found by fuzz/kernel_eg_cc).
+        let big = m.0.iter().fold(R::ZERO, |a, c| if c.abs() > a { c.abs() } else { a });
+        let s = Point3(m.0.map(|c| c / big));
+        Ok(s * (R::ONE / s.norm()))
     }
 }
