@@ -83,7 +83,7 @@ fn shift(s: usize, ds: i32, n: usize) -> usize {
 /// changes are ever needed. `reach`: the largest `x`, `y` held (2 or 3).
 #[inline]
 pub(super) fn locate(s: usize, x: i32, y: i32, n: usize, reach: i32) -> Loc {
-    if x.abs() > reach || y.abs() > reach {
+    if x.unsigned_abs() > reach.unsigned_abs() || y.unsigned_abs() > reach.unsigned_abs() {
         // A change of frame keeps the coordinates' magnitudes.
         return Loc::Outside;
     }

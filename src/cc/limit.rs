@@ -106,7 +106,9 @@ impl<R: Real> CcCap<'_, R> {
         // `|m|²` can be subnormal while `|m|` is not (f32 tangents near 1e-10):
         // `len` then has lost precision. Normalize `m` scaled by its largest
         // component instead (found by fuzz/kernel_eg_cc).
-        let big = m.0.iter().fold(R::ZERO, |a, c| if c.abs() > a { c.abs() } else { a });
+        let big =
+            m.0.iter()
+                .fold(R::ZERO, |a, c| if c.abs() > a { c.abs() } else { a });
         let s = Point3(m.0.map(|c| c / big));
         Ok(s * (R::ONE / s.norm()))
     }
