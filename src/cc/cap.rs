@@ -285,19 +285,7 @@ impl<'s, R: Real> CcCap<'s, R> {
         if k >= self.ring_len() {
             return Err(Error::OutOfDomain);
         }
-        let exponent = i32::try_from(self.level).unwrap_or(i32::MAX);
-        let size = libm::pow(0.5, f64::from(exponent));
-        let (x0, y0) = match k % PATCHES_PER_SECTOR {
-            0 => (size, 0.0),
-            1 => (0.0, size),
-            _ => (size, size),
-        };
-        Ok(PatchDomain {
-            sector: k / PATCHES_PER_SECTOR,
-            x0,
-            y0,
-            size,
-        })
+        Ok(PatchDomain::of_ring_patch(self.level, k))
     }
 
     /// All patches of the last step's ring, in index order.

@@ -265,20 +265,7 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         if k >= self.ring_len() {
             return Err(Error::OutOfDomain);
         }
-        // Level-(m−1) hole [0, 2^−(m−1)]²; the ring's pieces have half its size.
-        let exponent = i32::try_from(self.level).unwrap_or(i32::MAX);
-        let size = libm::pow(0.5, f64::from(exponent));
-        let (x0, y0) = match k % PATCHES_PER_SECTOR {
-            0 => (size, 0.0),
-            1 => (0.0, size),
-            _ => (size, size),
-        };
-        Ok(PatchDomain {
-            sector: k / PATCHES_PER_SECTOR,
-            x0,
-            y0,
-            size,
-        })
+        Ok(PatchDomain::of_ring_patch(self.level, k))
     }
 
     /// All patches of the last step's ring, in index order.
@@ -304,6 +291,27 @@ pub struct PatchDomain {
     pub y0: f64,
     /// Side length.
     pub size: f64,
+}
+
+impl PatchDomain {
+    /// Patch `k` of the ring emitted by step `level` (sector `k / 3`, piece
+    /// `k % 3`, §9): the level-(m−1) hole is `[0, 2^−(m−1)]²` and the ring's
+    /// pieces have half its size. Shared by EG and Catmull-Clark caps.
+    pub(crate) fn of_ring_patch(level: u32, k: usize) -> Self {
+        let exponent = i32::try_from(level).unwrap_or(i32::MAX);
+        let size = libm::pow(0.5, f64::from(exponent));
+        let (x0, y0) = match k % PATCHES_PER_SECTOR {
+            0 => (size, 0.0),
+            1 => (0.0, size),
+            _ => (size, size),
+        };
+        PatchDomain {
+            sector: k / PATCHES_PER_SECTOR,
+            x0,
+            y0,
+            size,
+        }
+    }
 }
 
 /// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
