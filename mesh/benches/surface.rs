@@ -32,35 +32,6 @@ impl SurfaceSink<f64> for Count {
     }
 }
 
-/// Disjoint union of meshes, each shifted along x.
-fn union(parts: &[MeshInput], copies: usize) -> MeshInput {
-    let mut out = MeshInput::default();
-    for k in 0..copies {
-        for (i, m) in parts.iter().enumerate() {
-            let base = out.vertices.len() as u32;
-            let dx = 10.0 * (k * parts.len() + i) as f64;
-            out.vertices
-                .extend(m.vertices.iter().map(|p| [p[0] + dx, p[1], p[2]]));
-            out.faces.extend(
-                m.faces
-                    .iter()
-                    .map(|f| f.iter().map(|&v| v + base).collect::<Vec<u32>>()),
-            );
-        }
-    }
-    out
-}
-
-fn features(faces: usize) -> MeshInput {
-    let parts = [
-        samples::mushroom(),
-        samples::rounded_cube(6),
-        samples::extraordinary_disk(7, 5),
-    ];
-    let per: usize = parts.iter().map(|m| m.faces.len()).sum();
-    union(&parts, faces.div_ceil(per))
-}
-
 fn torus(faces: usize) -> MeshInput {
     let side = (faces as f64).sqrt().ceil() as usize;
     samples::torus(side, side)
@@ -124,7 +95,7 @@ fn bench(c: &mut Criterion, name: &str, make: fn(usize) -> MeshInput, depth: u32
 }
 
 fn all(c: &mut Criterion) {
-    bench(c, "features", features, 3);
+    bench(c, "features", samples::feature_mix, 3);
     bench(c, "regular", torus, 3);
 }
 

@@ -8,7 +8,7 @@
 //! patch; `features`: copies of a mushroom (two valence-12 poles), a rounded
 //! cube (eight valence-3 EG caps) and a valence-7 extraordinary disk
 //! (Catmull-Clark cap), caps to depth 3 (as `benches/surface.rs`).
-use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions};
+use capdiv_mesh::{samples, CapRecord, Evaluator, PatchRecord, PlanOptions};
 use capdiv_mesh::{SurfacePlan, SurfaceSink, Topology};
 
 #[derive(Default)]
@@ -23,36 +23,12 @@ impl SurfaceSink<f64> for Count {
     }
 }
 
-fn features(faces: usize) -> MeshInput {
-    let parts = [
-        samples::mushroom(),
-        samples::rounded_cube(6),
-        samples::extraordinary_disk(7, 5),
-    ];
-    let per: usize = parts.iter().map(|m| m.faces.len()).sum();
-    let mut out = MeshInput::default();
-    for k in 0..faces.div_ceil(per) {
-        for (i, m) in parts.iter().enumerate() {
-            let base = out.vertices.len() as u32;
-            let dx = 10.0 * (k * parts.len() + i) as f64;
-            out.vertices
-                .extend(m.vertices.iter().map(|p| [p[0] + dx, p[1], p[2]]));
-            out.faces.extend(
-                m.faces
-                    .iter()
-                    .map(|f| f.iter().map(|&v| v + base).collect()),
-            );
-        }
-    }
-    out
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let kind = args.get(1).map(String::as_str).unwrap_or("regular");
     let faces: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(10_000);
     let mesh = if kind == "features" {
-        features(faces)
+        samples::feature_mix(faces)
     } else {
         let side = (faces as f64).sqrt().ceil() as usize;
         samples::torus(side, side)

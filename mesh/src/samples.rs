@@ -698,6 +698,30 @@ pub fn triangle_and_pentagon_mesh() -> MeshInput {
     b.finish()
 }
 
+/// A benchmark mesh of about `faces` faces (at least one copy): disjoint
+/// copies of a [`mushroom`] (two valence-12 poles), a [`rounded_cube`]`(6)`
+/// (eight valence-3 points) and an [`extraordinary_disk`]`(7, 5)` (one
+/// valence-7 point), 1,077 faces per copy, each copy shifted along x.
+pub fn feature_mix(faces: usize) -> MeshInput {
+    let parts = [mushroom(), rounded_cube(6), extraordinary_disk(7, 5)];
+    let per: usize = parts.iter().map(|m| m.faces.len()).sum();
+    let mut out = MeshInput::default();
+    for k in 0..faces.div_ceil(per).max(1) {
+        for (i, m) in parts.iter().enumerate() {
+            let base = out.vertices.len() as u32;
+            let dx = 10.0 * (k * parts.len() + i) as f64;
+            out.vertices
+                .extend(m.vertices.iter().map(|p| [p[0] + dx, p[1], p[2]]));
+            out.faces.extend(
+                m.faces
+                    .iter()
+                    .map(|f| f.iter().map(|&v| v + base).collect()),
+            );
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
