@@ -25,7 +25,9 @@ pub mod polar;
 pub mod real;
 pub mod trig;
 
-pub use bezier::{BicubicPatch, BiquarticPatch, PatchPoint, TensorPatch};
+pub use bezier::{
+    BicubicPatch, BiquarticPatch, PatchPoint, SurfaceGeometry, SurfaceJet, TensorPatch,
+};
 pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;

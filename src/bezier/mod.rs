@@ -5,7 +5,9 @@
 //! evaluator serve both: [`TensorPatch`], compiled once per `K`.
 
 pub mod convert;
+pub mod jet;
 pub mod patch;
 
 pub use convert::{bspline_to_bezier_cubic, BSPLINE_TO_BEZIER_CUBIC};
+pub use jet::{SurfaceGeometry, SurfaceJet};
 pub use patch::{BicubicPatch, BiquarticPatch, PatchPoint, TensorPatch};

@@ -9,6 +9,7 @@
 use super::buf::PolarNetBuf;
 use super::fourier::Fourier;
 use super::net::PolarNet;
+use crate::bezier::{SurfaceGeometry, SurfaceJet};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
@@ -21,19 +22,9 @@ pub struct PoleJet<R> {
     pub p: [Point3<R>; 6],
 }
 
-/// Differential geometry of the limit surface at the pole.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PoleGeometry<R> {
-    /// Unit normal `p1×p2/|p1×p2|`.
-    pub normal: Point3<R>,
-    /// Gaussian curvature `K = (eg − f²)/(EG − F²)`.
-    pub gaussian: R,
-    /// Mean curvature `H = (Eg − 2Ff + Ge)/(2(EG − F²))`.
-    pub mean: R,
-    /// Principal curvatures `H + √(H²−K)`, `H − √(H²−K)`.
-    pub principal: [R; 2],
-}
+/// Differential geometry of the limit surface at the pole: the same formulas
+/// as at any surface point ([`SurfaceJet::geometry`]).
+pub type PoleGeometry<R> = SurfaceGeometry<R>;
 
 impl<R: Real> PoleJet<R> {
     /// The jet of a net at its current level.
@@ -102,39 +93,16 @@ impl<R: Real> PoleJet<R> {
     /// √MAX]`), [`Error::NonFinite`] when a curvature overflows (a net far
     /// smaller than its tangents) or the jet is not finite.
     pub fn geometry(&self) -> Result<PoleGeometry<R>, Error> {
-        let [_, p1, p2, p3, p4, p5] = self.p;
-        let cross = p1.cross(p2);
-        let len = cross.norm();
-        let (e1, f1, g1) = (p1.dot(p1), p1.dot(p2), p2.dot(p2));
-        let det = e1 * g1 - f1 * f1;
-        if len <= R::ZERO || det <= R::ZERO || !len.is_finite() || !det.is_finite() {
-            return Err(Error::Degenerate);
-        }
-        let normal = cross * (R::ONE / len);
-        if !normal.is_finite() {
-            // `len` subnormal: its reciprocal overflows.
-            return Err(Error::Degenerate);
-        }
+        let [p0, p1, p2, p3, p4, p5] = self.p;
         let two = R::from_f64(2.0);
-        let e2 = normal.dot((p3 + p4) * two);
-        let g2 = normal.dot((p3 - p4) * two);
-        let f2 = normal.dot(p5 * two);
-        let gaussian = (e2 * g2 - f2 * f2) / det;
-        let mean = (e1 * g2 - two * f1 * f2 + g1 * e2) / (two * det);
-        let disc = mean * mean - gaussian;
-        let root = if disc > R::ZERO { disc.sqrt() } else { R::ZERO };
-        let principal = [mean + root, mean - root];
-        if ![gaussian, mean, principal[0], principal[1]]
-            .iter()
-            .all(|c| c.is_finite())
-        {
-            return Err(Error::NonFinite);
+        SurfaceJet {
+            position: p0,
+            du: p1,
+            dv: p2,
+            duu: (p3 + p4) * two,
+            duv: p5 * two,
+            dvv: (p3 - p4) * two,
         }
-        Ok(PoleGeometry {
-            normal,
-            gaussian,
-            mean,
-            principal,
-        })
+        .geometry()
     }
 }
