@@ -24,6 +24,7 @@ pub mod obj;
 pub mod plan;
 pub mod refine;
 pub mod samples;
+pub mod shade;
 pub mod stencil;
 pub mod tessellate;
 pub mod topology;
