@@ -75,7 +75,7 @@ impl HighlightLines {
         let e = unit(direction)?;
         let plane_normal = unit(cross(e, across))?;
         let d = cross(plane_normal, e);
-        if !(spacing > 0.0 && spacing.is_finite()) || !origin.iter().all(|c| c.is_finite()) {
+        if !(spacing > 0.0 && spacing.is_finite() && origin.iter().all(|c| c.is_finite())) {
             return None;
         }
         Some(HighlightLines {
