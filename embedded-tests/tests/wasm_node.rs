@@ -11,7 +11,7 @@ use capdiv_embedded_tests::{cargo_in, repo_root, run_with_limit};
 use std::process::Command;
 use std::time::Duration;
 
-#[path = "../../wasm/src/codes.rs"]
+#[path = "../../capi/src/codes.rs"]
 #[allow(dead_code)]
 mod codes;
 
