@@ -27,6 +27,8 @@
 //! is left in any call it references, and the WASM module would import it
 //! (its demo instantiates with no imports).
 #![no_std]
+#![warn(missing_docs)]
+#![deny(unsafe_op_in_unsafe_fn, clippy::undocumented_unsafe_blocks)]
 
 pub mod codes;
 

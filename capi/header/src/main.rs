@@ -2,8 +2,8 @@
 //! (configuration `capi/cbindgen.toml`):
 //!
 //! ```sh
-//! cargo run --release --manifest-path capi/header/Cargo.toml            # writes capi/include/capdiv.h
-//! cargo run --release --manifest-path capi/header/Cargo.toml -- --check # fails if it differs
+//! cargo run --manifest-path capi/header/Cargo.toml            # writes capi/include/capdiv.h
+//! cargo run --manifest-path capi/header/Cargo.toml -- --check # fails if it differs
 //! ```
 //!
 //! CI runs `--check` (scripts/ci-cfirmware.sh): the checked-in header must be
@@ -50,7 +50,7 @@ fn main() -> ExitCode {
         } else {
             eprintln!(
                 "capi/include/capdiv.h differs from what capi/src generates: \
-                 run `cargo run --release --manifest-path capi/header/Cargo.toml` and commit it"
+                 run `cargo run --manifest-path capi/header/Cargo.toml` and commit it"
             );
             ExitCode::FAILURE
         }
