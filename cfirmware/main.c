@@ -11,6 +11,7 @@
  *   eg_refine <prec> <id> <nodes_len> <steps> <out_len> <status> <out...>
  *   eg_ring <prec> <id> <nodes_len> <steps> <out_len> <status> <out...>
  *   badbuf <what> <status>
+ *   lens <work_len(6, d)> <out_len(6, d)> <eg_refine_len(5)> <eg_ring_len(5)> <three overflows: 0>
  *   abi <calls referenced>
  *   stackphase <phase> <high-water mark of that phase>
  *   stack <high-water mark> <stack size>
@@ -247,6 +248,24 @@ static void run_f32(void) {
     status(s);
     end_line();
     expect(s == CAPDIV_BAD_BUFFER, "null center");
+    /* An output one short of the refined net (valence 12, 5 links: 185). */
+    s = capdiv_c2ps_refine_f32(pole32, coords32, all, v, 1, 0, scratch.f, work,
+                               scratch.f + work, capdiv_c2ps_out_len(v, 1) - 1);
+    out_str("badbuf c2ps_short_out");
+    status(s);
+    end_line();
+    expect(s == CAPDIV_BAD_BUFFER, "short out");
+
+    /* The length helpers, and 0 where a length would overflow. */
+    out_str("lens");
+    arg(capdiv_c2ps_work_len(v, C2PS_STEPS_F32));
+    arg(capdiv_c2ps_out_len(v, C2PS_STEPS_F32));
+    arg(capdiv_eg_refine_len(5));
+    arg(capdiv_eg_ring_len(5));
+    arg(capdiv_c2ps_work_len(v, 40));
+    arg(capdiv_c2ps_out_len((size_t)-1, 0));
+    arg(capdiv_eg_ring_len((size_t)-1));
+    end_line();
     phase("eg_f32");
 }
 
