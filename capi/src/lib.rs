@@ -21,11 +21,11 @@
 //!   [`capdiv::PolarNet::from_flat`]); an EG c-net (spec EG.md §1) is `center`
 //!   and `nodes`, `6n` points sector by sector in the §1 order.
 //!
-//! Panic-free: with the feature `panic-handler` the panic handler calls
+//! Panic-free: the crate's panic handler (also the WASM module's) calls
 //! `capdiv_panic_path_linked`, a symbol defined nowhere: a C firmware that
-//! links the staticlib fails to link (an undefined reference) if a panic path
-//! is left in any call it references, and the WASM module would import it
-//! (its demo instantiates with no imports).
+//! links the staticlib with `--gc-sections` fails to link (an undefined
+//! reference) if a panic path is left in any call it references, and the WASM
+//! module would import it (its demo instantiates with no imports).
 #![no_std]
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn, clippy::undocumented_unsafe_blocks)]
@@ -78,7 +78,6 @@ pub extern "C" fn capdiv_eg_ring_len(n: usize) -> usize {
     eg::ring_len(n).unwrap_or(0)
 }
 
-#[cfg(feature = "panic-handler")]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo) -> ! {
     extern "C" {
