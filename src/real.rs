@@ -2,7 +2,11 @@
 //!
 //! Every formula in the kernel is written once over [`Real`]. Constants are
 //! written as exact rationals in `f64` and rounded once to the target type by
-//! [`Real::from_f64`].
+//! [`Real::from_f64`] (constant operands: folded by the compiler). Values known
+//! only at run time — valences, table weights — reach the type through
+//! [`Real::ratio`] and [`Real::from_usize`], which never compute in `f64` for
+//! `f32`: an `f32` build needs no soft-float `f64` routines (on a Cortex-M4F
+//! they are ~4 KiB of flash and ~100 instructions per operation).
 //!
 //! Square roots go through `libm` (`sqrt`, `sqrtf`), correctly rounded. With the
 //! `micromath` feature, `f32::sqrt` is micromath's bit-manipulation estimate
@@ -41,11 +45,16 @@ pub trait Real:
     fn from_f64(v: f64) -> Self;
     /// Widens to `f64` (exact for both implementors).
     fn to_f64(self) -> f64;
-    /// The exact rational `num / den`, rounded once.
+    /// The exact rational `num / den`, rounded once to this type when
+    /// `|num|, |den| ≤ 2^24` (every caller: weights ≤ 10⁵, valences; `f32`
+    /// divides the exactly converted integers, which rounds the same as
+    /// rounding the `f64` quotient again, since 53 ≥ 2·24 + 2).
     #[inline]
     fn ratio(num: i32, den: i32) -> Self {
         Self::from_f64(num as f64 / den as f64)
     }
+    /// `n` rounded to this type (exact below 2^24 for `f32`, 2^53 for `f64`).
+    fn from_usize(n: usize) -> Self;
     /// Square root (libm, or micromath's estimate for `f32` with that feature).
     fn sqrt(self) -> Self;
     /// Absolute value.
@@ -65,6 +74,10 @@ impl Real for f64 {
     #[inline]
     fn to_f64(self) -> f64 {
         self
+    }
+    #[inline]
+    fn from_usize(n: usize) -> Self {
+        n as f64
     }
     #[inline]
     fn sqrt(self) -> Self {
@@ -91,6 +104,14 @@ impl Real for f32 {
     #[inline]
     fn to_f64(self) -> f64 {
         self as f64
+    }
+    #[inline]
+    fn ratio(num: i32, den: i32) -> Self {
+        num as f32 / den as f32
+    }
+    #[inline]
+    fn from_usize(n: usize) -> Self {
+        n as f32
     }
     #[cfg(not(feature = "micromath"))]
     #[inline]

@@ -193,15 +193,16 @@ impl<R: Real> CNet<R> {
         // n ≠ 3: e weighs n/(n+5); n = 3: 11/32. Written as c0 = e + Σ w (c − e),
         // exact because the weights sum to 1.
         let (w6, w5) = if n == 3 {
-            (1.0 / 6.0, 5.0 / 96.0)
+            (R::ratio(1, 6), R::ratio(5, 96))
         } else {
-            let nf = n as f64;
-            (4.0 / (nf * (nf + 5.0)), 1.0 / (nf * (nf + 5.0)))
+            // n ≤ MAX_VALENCE: n(n + 5) is a small integer.
+            let g = (n * (n + 5)) as i32;
+            (R::ratio(4, g), R::ratio(1, g))
         };
         let e = self.center;
         let mut acc = Point3::ZERO;
         for [c6, _, c5, ..] in self.sectors.iter() {
-            acc += (*c6 - e) * R::from_f64(w6) + (*c5 - e) * R::from_f64(w5);
+            acc += (*c6 - e) * w6 + (*c5 - e) * w5;
         }
         e + acc
     }
@@ -428,24 +429,28 @@ fn fill<R: Real, const K: usize>(
 
 /// The per-sector weights `e_ij / γ_n` of formula (4), node order `i + 4j`.
 fn limit_weights<R: Real>(n: usize) -> [R; D_SECTOR] {
-    // Integers below 2^53, exact in f64 (n ≤ 10: |e| < 10^6, γ < 3·10^7).
-    let nn = n as f64;
-    let (g, e00, e20, e22, e30, e31, e32) = if n == 3 {
-        (93_120.0, 11.0, -73.0, 10_643.0, -66.0, 396.0, 19_062.0)
+    // Integers (n ≤ 10: |e| < 4·10^6 < 2^24). γ = 16·γ' with γ' < 2^24, so
+    // e/γ = (e/γ')/16 is one rounding of an exact rational (`Real::ratio`)
+    // scaled exactly by 1/16.
+    // Callers check n ≤ MAX_VALENCE; the clamp keeps i32 in range regardless.
+    let nn = n.min(MAX_VALENCE) as i32;
+    let (g16, e00, e20, e22, e30, e31, e32) = if n == 3 {
+        (5_820, 11, -73, 10_643, -66, 396, 19_062)
     } else {
-        let e30 = 336.0 * (153.0 * nn - 448.0);
+        let e30 = 336 * (153 * nn - 448);
         (
-            178_480.0 * nn * (nn + 5.0),
-            2587.0 * nn - 8377.0,
-            19_339.0 * nn - 53_929.0,
-            157_051.0 * nn + 50_279.0,
+            11_155 * nn * (nn + 5),
+            2587 * nn - 8377,
+            19_339 * nn - 53_929,
+            157_051 * nn + 50_279,
             e30,
-            -6.0 * e30,
-            48.0 * (8483.0 * nn - 5008.0),
+            -6 * e30,
+            48 * (8483 * nn - 5008),
         )
     };
-    let (e10, e11, e21) = (-6.0 * e00, 36.0 * e00, -6.0 * e20);
+    let (e10, e11, e21) = (-6 * e00, 36 * e00, -6 * e20);
     // 00 10 20 30 01 11 21 31 02 12 22 32
-    let e: [f64; D_SECTOR] = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
-    e.map(|x| R::from_f64(x / g))
+    let e: [i32; D_SECTOR] = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
+    let sixteenth = R::ratio(1, 16);
+    e.map(|x| R::ratio(x, g16) * sixteenth)
 }

@@ -88,7 +88,7 @@ impl<R: Real> Fourier<R> {
         if n == 0 {
             return f; // an empty net: all sums zero
         }
-        let inv = R::ONE / R::from_f64(n as f64);
+        let inv = R::ONE / R::from_usize(n);
         f.a = f.a * inv;
         f.c1 = f.c1 * inv;
         f.s1 = f.s1 * inv;

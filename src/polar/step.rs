@@ -90,7 +90,8 @@ pub(crate) fn step_fits<R: Real>(
             }
         }
     }
-    if (m * R::from_f64(16.0 * n as f64)).is_finite() {
+    // 16·n rounds as in f64: scaling by 16 is exact.
+    if (m * (R::from_usize(n) * R::from_f64(16.0))).is_finite() {
         Ok(())
     } else {
         Err(Error::NonFinite)
