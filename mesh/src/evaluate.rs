@@ -129,6 +129,14 @@ pub enum EvalError {
         /// The largest capacity.
         max: usize,
     },
+    /// A point of the refined mesh or a phantom point exceeds `MAX/2` in
+    /// magnitude (or is not finite): the refinement overflowed, or the
+    /// regular patches formed from it could. Checked before any patch is
+    /// emitted. Input coordinates of at most `MAX/32` never fail here:
+    /// refined points are convex combinations of the input, and a phantom
+    /// point (`2b − i`, mirrored twice at a corner: `4a − 2b − 2c + d`) is at
+    /// most 9 times its magnitude.
+    Overflow,
     /// The kernel refused a cap.
     Kernel {
         /// The cap's index.
@@ -155,6 +163,9 @@ impl core::fmt::Display for EvalError {
                 f,
                 "the pole at vertex {vertex} needs valence {needed} at the requested depth, at most {max} is supported"
             ),
+            EvalError::Overflow => {
+                write!(f, "the refined mesh overflows the number type (coordinates too large)")
+            }
             EvalError::Kernel { cap, error } => write!(f, "cap {cap}: {error}"),
         }
     }
@@ -247,6 +258,16 @@ impl<R: Real> Evaluator<R> {
         let (verts, phantoms) = self.work.split_at_mut(split);
         verts.copy_from_slice(&last[..verts.len()]);
         plan.phantoms.apply(verts, phantoms);
+        // Regular patches are convex combinations of these points: below
+        // MAX/2 they are finite. `(p + p)·0` is zero unless a coordinate is
+        // above MAX/2 or not finite (then NaN, which the sum keeps).
+        let mut probe = Point3::ZERO;
+        for p in &self.work {
+            probe += (*p + *p) * R::ZERO;
+        }
+        if !probe.is_finite() {
+            return Err(EvalError::Overflow);
+        }
 
         let level0 = plan.steps.len() as u32;
         for r in &plan.regular {

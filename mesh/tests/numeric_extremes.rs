@@ -103,10 +103,10 @@ fn scaled_samples_are_finite_or_errors() {
     scaled_samples(&[10, 12, 20]);
 }
 
-/// Coordinates up to `MAX/4`.
+/// Coordinates up to `MAX/4` (regular patches near `MAX/4` overflowed
+/// silently before `EvalError::Overflow`).
 #[test]
-#[ignore = "bug: capdiv-mesh emits non-finite Regular B-spline patches (no error) \
-            for meshes near MAX/4 (extraordinary_disk(5, 3), f64); kernel caps are checked"]
+#[cfg_attr(miri, ignore = "whole meshes: too large for Miri")]
 fn scaled_samples_up_to_max_are_finite_or_errors() {
     scaled_samples(&[0, 1, 2, 4, 8]);
 }
@@ -147,14 +147,15 @@ fn scaled_samples(huge: &[i32]) {
                 match r {
                     Ok(()) => ok += 1,
                     Err(e) => {
-                        // Only the kernel's overflow errors, at huge scales.
+                        // Only overflow errors (the kernel's or the
+                        // refined mesh's), at huge scales.
                         assert!(
                             matches!(
                                 e,
                                 EvalError::Kernel {
                                     error: capdiv::Error::NonFinite | capdiv::Error::Degenerate,
                                     ..
-                                }
+                                } | EvalError::Overflow
                             ),
                             "{name}: {e:?}"
                         );
@@ -166,4 +167,74 @@ fn scaled_samples(huge: &[i32]) {
     }
     println!("evaluations: {ok} finite, {err} errors");
     assert!(ok > 0);
+}
+
+/// Each sample scaled so that its largest coordinate is `MAX·2^-k`.
+fn scaled_to<R: capdiv::Real>(m: &MeshInput, max: f64, k: i32, cast: fn(f64) -> R) -> Vec<[R; 3]> {
+    let big = m
+        .vertices
+        .iter()
+        .flatten()
+        .fold(0.0f64, |a, c| a.max(c.abs()));
+    let s = max * libm::exp2(-f64::from(k)) / big;
+    m.vertices.iter().map(|p| p.map(|c| cast(c * s))).collect()
+}
+
+fn evaluate_all<R: capdiv::Real>(
+    plan: &SurfacePlan<'_>,
+    positions: &[[R; 3]],
+) -> (Result<(), EvalError>, usize) {
+    let mut ev = Evaluator::<R>::new(plan).expect("evaluator");
+    let mut out = Collect::<R>::default();
+    let r = ev.evaluate(plan, positions, &mut out);
+    (r, out.patches.len() + out.caps.len())
+}
+
+/// The refined-mesh check (`EvalError::Overflow`) never fires for input
+/// coordinates up to `MAX/32` (its documented bound: refined points are
+/// convex combinations, phantom points at most 9 times the input); at
+/// `MAX/2` every sample fails it, before emitting anything. f32 and f64.
+#[test]
+#[cfg_attr(miri, ignore = "whole meshes: too large for Miri")]
+fn refined_mesh_overflow_is_reported_before_any_patch() {
+    for (name, m) in meshes() {
+        let topo = Topology::new(&m).unwrap();
+        let plan = SurfacePlan::new(
+            &topo,
+            PlanOptions {
+                depth: 3,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        for k in 5..=12 {
+            let (r64, _) = evaluate_all(&plan, &scaled_to(&m, f64::MAX, k, |c| c));
+            let (r32, _) = evaluate_all(&plan, &scaled_to(&m, f32::MAX.into(), k, |c| c as f32));
+            for r in [r64, r32] {
+                assert!(r != Err(EvalError::Overflow), "{name} at MAX/2^{k}: {r:?}");
+            }
+        }
+        // Measured edge (printed): the smallest k with no Overflow.
+        let edge = |max: f64, f32_run: bool| {
+            (0..5).find(|&k| {
+                let r = if f32_run {
+                    evaluate_all(&plan, &scaled_to(&m, max, k, |c| c as f32)).0
+                } else {
+                    evaluate_all(&plan, &scaled_to(&m, max, k, |c| c)).0
+                };
+                r != Err(EvalError::Overflow)
+            })
+        };
+        println!(
+            "{name}: first scale without Overflow MAX/2^k, k = {:?} (f64), {:?} (f32)",
+            edge(f64::MAX, false),
+            edge(f32::MAX.into(), true)
+        );
+        let (r64, n64) = evaluate_all(&plan, &scaled_to(&m, f64::MAX, 0, |c| c));
+        let (r32, n32) = evaluate_all(&plan, &scaled_to(&m, f32::MAX.into(), 0, |c| c as f32));
+        for (r, n) in [(r64, n64), (r32, n32)] {
+            assert_eq!(r, Err(EvalError::Overflow), "{name} at MAX");
+            assert_eq!(n, 0, "{name}: emitted before the error");
+        }
+    }
 }
