@@ -309,7 +309,10 @@ fn check_log(lines: &[String], w: Workloads) -> Checked {
     let mut egcfg = Vec::new();
     let mut geometry = false;
     for line in &lines[1..lines.len() - 1] {
-        if line.starts_with("geometry PoleGeometry {") {
+        // PoleGeometry is SurfaceGeometry since b327eee; defmt names the struct.
+        if line.starts_with("geometry PoleGeometry {")
+            || line.starts_with("geometry SurfaceGeometry {")
+        {
             geometry = true;
             continue;
         }
