@@ -15,6 +15,7 @@
 //! vector lengths — never the refinement rules, whose angles are derived in `f64`
 //! (see [`crate::trig`]). The README states the accuracy measured with it.
 
+use crate::trig::UnitRoots;
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -32,6 +33,7 @@ pub trait Real:
     + AddAssign
     + SubAssign
     + MulAssign
+    + UnitRoots
     + 'static
 {
     /// Additive identity.

@@ -47,8 +47,6 @@ pub struct PolarNetBuf<'s, R> {
     cap: usize,
     /// Current valence `N` (0 for an empty net).
     valence: usize,
-    /// `(cos, sin)(2π/N)` in `f64`, the seed of the next doubling.
-    primitive: (f64, f64),
     held: usize,
     level: u32,
     base_valence: usize,
@@ -88,7 +86,6 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
             roots: root_storage,
             cap,
             valence: 0,
-            primitive: (0.0, 0.0),
             held: 0,
             level: 0,
             base_valence: 0,
@@ -121,7 +118,7 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
     pub fn reset<L: AsRef<[[R; 3]]>>(&mut self, pole: [R; 3], links: &[L]) -> Result<(), Error> {
         let n = validate(&pole, links)?;
         check_valence(n, self.cap)?;
-        let seed = seed(n)?;
+        let base = seed(n)?;
         // Checked: from here on nothing fails.
         let held = links.len().min(MAX_STORED_LINKS);
         let slots = split_links(self.links, self.cap, n, held);
@@ -131,7 +128,7 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
             }
         }
         let roots = self.roots.get_mut(..n).unwrap_or_default();
-        self.primitive = fill_ring(roots, n, seed);
+        fill_ring(roots, n, base);
         self.pole = Point3(pole);
         self.valence = n;
         self.held = held;
@@ -223,7 +220,7 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
         check_step(self.held, n, self.cap)?;
         step_fits(self.pole, [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])), n)?;
         let roots = self.roots.get_mut(..2 * n).unwrap_or_default();
-        self.primitive = double_ring(roots, n, self.primitive);
+        double_ring(roots, n);
         let new_held = held_after_step(self.held);
         c2ps_in_place(
             &mut self.pole,

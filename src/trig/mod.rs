@@ -10,8 +10,11 @@
 //!   capacity; it is built from the table and doubled in place by every C²PS
 //!   step (`2·CAP·size_of::<R>()` bytes per net).
 
+pub mod angles;
+mod double_single;
 pub mod roots;
 pub mod table;
 
+pub use angles::UnitRoots;
 pub use roots::RootsOfUnity;
 pub use table::{primitive_root, MAX_ODD_PART, ODD_ROOTS};

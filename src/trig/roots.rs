@@ -1,14 +1,17 @@
 //! `RootsOfUnity`: the ring `(c(j/N), s(j/N))`, `j < N`, of the current valence.
 //!
-//! Built once per net from [`super::table`] and doubled in place by each C²PS
-//! step: `new[2j] = old[j]`, `new[2j+1] = old[j]·ω_{2N}` (one complex product,
-//! `ω_{2N}` from a half-angle step kept in `f64`). The error therefore grows by
-//! one rounding per level, not per entry. Storage: `2·CAP` scalars.
+//! Built once per net ([`fill_base`](super::UnitRoots::fill_base) for the odd part, then
+//! doublings) and doubled in place by each C²PS step: `new[2j] = old[j]`,
+//! `new[2j+1] = old[j]·ω_{2N}` (one complex product, `ω_{2N}` from
+//! [`unit_root`](super::UnitRoots::unit_root), rounded once from ~48 bits or more). The error
+//! therefore grows by one rounding per level, not per entry. Storage: `2·CAP`
+//! scalars.
 //!
 //! The ring algorithms (`fill_ring`, `double_ring`) work on plain slices, once
 //! per scalar type; [`RootsOfUnity`] and [`crate::polar::PolarNetBuf`] (roots in
 //! caller storage) both call them.
 
+use super::table::MAX_ODD_PART;
 use crate::error::Error;
 use crate::polar::index::{at, put};
 use crate::real::Real;
@@ -19,19 +22,12 @@ use heapless::{Vec, VecView};
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct RootsOfUnity<R, const CAP: usize> {
     ring: Vec<[R; 2], CAP>,
-    /// `(cos, sin)(2π/N)` in `f64`, the seed of the next doubling.
-    primitive: (f64, f64),
 }
 
 impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
     /// An empty ring (valence 0), for statics; fill it with [`Self::reset`].
     pub const fn empty() -> Self {
-        RootsOfUnity {
-            ring: Vec::new(),
-            // All-zero bytes, so a static net lands in .bss; never read before
-            // `reset` (doubling an empty ring is a no-op).
-            primitive: (0.0, 0.0),
-        }
+        RootsOfUnity { ring: Vec::new() }
     }
 
     /// The ring for valence `n`.
@@ -44,11 +40,11 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
     /// Refills the ring in place for valence `n`; on error it is unchanged.
     pub fn reset(&mut self, n: usize) -> Result<(), Error> {
         check_valence(n, CAP)?;
-        let seed = seed(n)?;
+        let base = seed(n)?;
         self.ring.clear();
         // Cannot fail: n <= CAP was checked above.
         let _ = self.ring.resize(n, [R::ZERO; 2]);
-        self.primitive = fill_ring(&mut self.ring, n, seed);
+        fill_ring(&mut self.ring, n, base);
         Ok(())
     }
 
@@ -98,7 +94,7 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
         check_double(n, CAP)?;
         // Cannot fail: 2n <= CAP was checked above.
         let _ = self.ring.resize(2 * n, [R::ZERO; 2]);
-        self.primitive = double_ring(&mut self.ring, n, self.primitive);
+        double_ring(&mut self.ring, n);
         Ok(())
     }
 }
@@ -120,7 +116,7 @@ pub(crate) fn check_valence(n: usize, cap: usize) -> Result<(), Error> {
             capacity: cap,
         });
     }
-    super::primitive_root(n).ok_or(Error::ValenceUnsupported { valence: n })?;
+    seed(n)?;
     Ok(())
 }
 
@@ -138,58 +134,36 @@ pub(crate) fn check_double(n: usize, cap: usize) -> Result<(), Error> {
 }
 
 /// Where [`fill_ring`] starts for valence `n`: the odd part of `n` (or 4 for
-/// powers of two) and its primitive root. Fails for an unsupported odd part.
-pub(crate) fn seed(n: usize) -> Result<(usize, (f64, f64)), Error> {
-    let odd = n >> n.trailing_zeros();
-    let base = if odd == 1 { 4 } else { odd };
-    let primitive = super::primitive_root(base).ok_or(Error::ValenceUnsupported { valence: n })?;
-    Ok((base, primitive))
+/// powers of two). [`Error::ValenceUnsupported`] for an odd part above
+/// [`MAX_ODD_PART`] (or `n < 3`).
+pub(crate) fn seed(n: usize) -> Result<usize, Error> {
+    let odd = n.checked_shr(n.trailing_zeros()).unwrap_or(0);
+    if n < 3 || odd > MAX_ODD_PART {
+        return Err(Error::ValenceUnsupported { valence: n });
+    }
+    Ok(if odd == 1 { 4 } else { odd })
 }
 
 /// Writes the `n`-th roots to `ring[..n]` (`ring.len() >= n`, `n` checked by
-/// [`check_valence`], `seed` from [`seed`]): the base ring by a short product
-/// chain, then doublings in place. Returns `(cos, sin)(2π/n)` in `f64`.
-pub(crate) fn fill_ring<R: Real>(
-    ring: &mut [[R; 2]],
-    n: usize,
-    (base, mut primitive): (usize, (f64, f64)),
-) -> (f64, f64) {
-    fill(ring, base, primitive);
+/// [`check_valence`], `base` from [`seed`]): the base ring by a short product
+/// chain, then doublings in place.
+pub(crate) fn fill_ring<R: Real>(ring: &mut [[R; 2]], n: usize, base: usize) {
+    R::fill_base(ring, base);
     let mut len = base;
     while len < n && len > 0 {
-        primitive = double_ring(ring, len, primitive);
+        double_ring(ring, len);
         len *= 2;
-    }
-    primitive
-}
-
-/// Fills `ring[..n]` with the `n`-th roots: the powers `ω^j` for `j <= n/2` by
-/// repeated multiplication in `f64` (at most 63 products for the odd part),
-/// the rest by symmetry `ω^(n-j) = conj ω^j`.
-fn fill<R: Real>(ring: &mut [[R; 2]], n: usize, w: (f64, f64)) {
-    let (mut c, mut s) = (1.0f64, 0.0f64);
-    for j in 0..=n / 2 {
-        put(ring, j, [R::from_f64(c), R::from_f64(s)]);
-        if j > 0 {
-            put(ring, n - j, [R::from_f64(c), R::from_f64(-s)]);
-        }
-        let c2 = c * w.0 - s * w.1;
-        s = s * w.0 + c * w.1;
-        c = c2;
     }
 }
 
 /// Doubles the ring `ring[..n]` of `n`-th roots in place into `ring[..2n]`
 /// (`ring.len() >= 2n`, checked by the caller): `new[2j] = old[j]`,
-/// `new[2j+1] = old[j]·ω_{2n}`. `w = (cos, sin)(2π/n)`; returns that of `2n`.
-pub(crate) fn double_ring<R: Real>(ring: &mut [[R; 2]], n: usize, w: (f64, f64)) -> (f64, f64) {
-    let ch = libm::sqrt(0.5 * (1.0 + w.0));
-    let half = (ch, w.1 / (2.0 * ch));
-    let (hc, hs) = (R::from_f64(half.0), R::from_f64(half.1));
+/// `new[2j+1] = old[j]·ω_{2n}`.
+pub(crate) fn double_ring<R: Real>(ring: &mut [[R; 2]], n: usize) {
+    let [hc, hs] = R::unit_root(n.wrapping_mul(2));
     for j in (0..n).rev() {
         let [c, s] = at(ring, j, [R::ZERO; 2]);
         put(ring, 2 * j, [c, s]);
         put(ring, 2 * j + 1, [c * hc - s * hs, s * hc + c * hs]);
     }
-    half
 }
