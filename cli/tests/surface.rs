@@ -110,7 +110,7 @@ fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, us
         &topo,
         PlanOptions {
             depth,
-            eg_tables: vec![],
+            ..Default::default()
         },
     )
     .unwrap();
@@ -597,7 +597,7 @@ fn f32_patches_equal_the_library_in_f32() {
         &topo,
         PlanOptions {
             depth: 2,
-            eg_tables: vec![],
+            ..Default::default()
         },
     )
     .unwrap();

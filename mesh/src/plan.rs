@@ -21,6 +21,11 @@
 //!    makes every face a quad and separates extraordinary points, but a quad
 //!    can then hold two of them at opposite corners (an old vertex and the
 //!    centre of a non-quad face), which a second step separates.
+//!
+//! With [`PlanOptions::catmull_clark`] every cap is a Catmull-Clark cap (the
+//! papers' baseline): rule 2 is skipped (a fan's triangles are non-quad faces,
+//! refined by a Catmull-Clark step; the pole becomes an extraordinary point of
+//! the same valence) and rule 3 always picks Catmull-Clark.
 
 use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
 use crate::chart::{Affine, FaceChart};
@@ -67,6 +72,12 @@ pub struct PlanOptions<'t> {
     pub depth: u32,
     /// EG rule tables for valences 6..10 (checked by [`RuleTable::new`]).
     pub eg_tables: Vec<RuleTable<'t>>,
+    /// Every cap a Catmull-Clark cap: polar vertices are not detected — their
+    /// triangles get a Catmull-Clark step like other non-quad faces — and
+    /// extraordinary points of valence 3 and 5 get CC caps instead of EG.
+    /// (The baseline the papers compare C²PS and EG with; `eg_tables` are
+    /// then unused.)
+    pub catmull_clark: bool,
 }
 
 impl Default for PlanOptions<'_> {
@@ -74,6 +85,7 @@ impl Default for PlanOptions<'_> {
         PlanOptions {
             depth: 6,
             eg_tables: Vec::new(),
+            catmull_clark: false,
         }
     }
 }
@@ -207,7 +219,7 @@ impl<'t> SurfacePlan<'t> {
                 needed = uncovered_list(&pass.uncovered, &charts, true);
             }
             let seeds: Vec<PolarSeed> = (0..level_topo.num_vertices())
-                .filter(|&v| is_fan(&level_topo, v))
+                .filter(|&v| !options.catmull_clark && is_fan(&level_topo, v))
                 .filter_map(|v| polar_config(&level_topo, v, None, false).ok())
                 .map(|c| PolarSeed {
                     pole: c.pole,
@@ -431,7 +443,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
         if t.vertex_first(v) == NONE {
             continue;
         }
-        if is_fan(t, v) {
+        if !options.catmull_clark && is_fan(t, v) {
             match polar_config(t, v, None, true) {
                 Ok(c) => {
                     let faces: Vec<u32> = c.triangles.iter().chain(&c.quads).copied().collect();
@@ -466,6 +478,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
                     continue;
                 }
                 let (scheme, table) = match n {
+                    _ if options.catmull_clark => (Scheme::CatmullClark, None),
                     3 | 5 => (Scheme::Eg, None),
                     6..=10 => match options.eg_tables.iter().position(|t| t.valence() == n) {
                         Some(i) => (Scheme::Eg, Some(i)),

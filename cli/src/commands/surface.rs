@@ -210,7 +210,15 @@ pub fn build<R: Scalar>(
     let start = Instant::now();
     let topo = Topology::new(mesh).map_err(mesh_err)?;
     let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
-    let plan = SurfacePlan::new(&topo, PlanOptions { depth, eg_tables }).map_err(mesh_err)?;
+    let plan = SurfacePlan::new(
+        &topo,
+        PlanOptions {
+            depth,
+            eg_tables,
+            ..Default::default()
+        },
+    )
+    .map_err(mesh_err)?;
     let analysis = start.elapsed();
 
     let start = Instant::now();
