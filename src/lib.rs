@@ -32,5 +32,8 @@ pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;
 pub use point::Point3;
-pub use polar::{FirstStep, OuterRegion, PolarNet, PolarNetBuf, PoleGeometry, PoleJet};
+pub use polar::{
+    FirstStep, OuterRegion, PolarNet, PolarNetBuf, PolarStream, PoleGeometry, PoleJet,
+    StreamOptions, StreamedPatch,
+};
 pub use real::Real;

@@ -14,9 +14,12 @@ pub mod outer;
 pub mod ring;
 mod rts;
 mod step;
+pub mod stream;
+mod stream_level;
 
 pub use buf::PolarNetBuf;
 pub use jet::{PoleGeometry, PoleJet};
 pub use net::{FirstStep, PolarNet, MAX_STORED_LINKS};
 pub use outer::OuterRegion;
 pub use ring::{RingPatches, RingPatchesView};
+pub use stream::{PolarStream, StreamOptions, StreamedPatch, Sweep};
