@@ -25,6 +25,8 @@ mod surface;
 mod c2ps;
 #[cfg(feature = "eg")]
 mod eg;
+#[cfg(feature = "c2ps-stream")]
+mod stream;
 
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::debug::{self, EXIT_FAILURE, EXIT_SUCCESS};
@@ -47,6 +49,11 @@ fn main() -> ! {
         ok &= report::outcome("eg", eg::run());
         let (used, _) = stack::high_water_mark();
         defmt::println!("stackeg {=usize}", used);
+    }
+    #[cfg(feature = "c2ps-stream")]
+    {
+        stack::repaint();
+        ok &= report::outcome("c2ps-stream", stream::run());
     }
     let (hwm, size) = stack::peak();
     defmt::println!("stack {=usize} {=usize}", hwm, size);

@@ -26,6 +26,11 @@ pub fn link() {
             eg::all::<f32>();
             eg::all::<f64>();
         }
+        #[cfg(feature = "c2ps-stream")]
+        {
+            stream::all::<f32>();
+            stream::all::<f64>();
+        }
         common::all::<f32>();
         common::all::<f64>();
     }
@@ -198,5 +203,34 @@ mod eg {
         }
         let _ = black_box(sub.step());
         black_box(lambda_catmull_clark(black_box(7)));
+    }
+}
+
+#[cfg(feature = "c2ps-stream")]
+mod stream {
+    use super::black_box;
+    use capdiv::{FirstStep, PolarStream, Real, StreamOptions};
+
+    #[inline(never)]
+    pub fn all<R: Real>() {
+        let pole = black_box([R::ZERO; 3]);
+        let store = [[R::ZERO; 3]; 21];
+        let pts: &[[R; 3]] = black_box(&store);
+        let links: [&[[R; 3]]; 3] = black_box([pts, pts, pts]);
+        let mut state = PolarStream::<R, 4>::empty();
+        let opts = StreamOptions::depth(black_box(3))
+            .first(black_box(FirstStep::Plain))
+            .only(black_box(1), black_box(Some(1)));
+        if let Ok(mut sweep) = state.sweep(pole, &links, opts) {
+            let _ = black_box(sweep.jet());
+            let _ = black_box(sweep.valence(black_box(2)));
+            let _ = black_box(sweep.len());
+            let _ = black_box(sweep.next().map(|p| p.ring_index()));
+        }
+        let _ = black_box(
+            state.run(pole, &links, black_box(StreamOptions::depth(2)), |p| {
+                black_box(p);
+            }),
+        );
     }
 }
