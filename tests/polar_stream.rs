@@ -303,8 +303,8 @@ fn state_size_grows_linearly_with_max_depth() {
         sz::<f32, 20>() - sz::<f32, 12>(),
         8 * (sz::<f32, 13>() - sz::<f32, 12>())
     );
-    // The module docs' formula: (D+1)·(96 scalars + 3 words).
-    let formula = |d: usize, r: usize| (d + 1) * (96 * r + 3 * size_of::<usize>());
+    // The module docs' formula: (D+1)·(88 scalars + 3 words).
+    let formula = |d: usize, r: usize| (d + 1) * (88 * r + 3 * size_of::<usize>());
     assert_eq!(sz::<f64, 20>(), formula(20, 8));
     assert_eq!(sz::<f32, 12>(), formula(12, 4));
     for d in [8usize, 12, 16, 20] {

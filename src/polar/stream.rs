@@ -15,9 +15,11 @@
 //! wrap-around columns instead of storing them.
 //!
 //! Memory: [`PolarStream<R, D>`] holds `D + 1` levels of
-//! `4·(15 + 4) + 20` scalars and three words each:
-//! `size_of = (D + 1)·(96·size_of::<R>() + 3·size_of::<usize>())` plus a few
-//! words (f32, `D = 12`: 5.1 KiB; f64, `D = 20`: 16.6 KiB), whatever the
+//! `4·(15 + 2) + 20` scalars (a window of 4 columns of 5 points and a root,
+//! the pole, the 1-link sums, a root) and three words each:
+//! `size_of = (D + 1)·(88·size_of::<R>() + 3·size_of::<usize>())`
+//! (f32, `D = 12`: 4,732 bytes with 32-bit words, 4,888 with 64-bit; f64,
+//! `D = 20`: 15,288 bytes with 64-bit words), whatever the
 //! valence or the depth reached. The sweep's own stack use is fixed.
 //!
 //! The results equal [`PolarNet`]'s in-place path to rounding (the 1-link
@@ -311,11 +313,11 @@ fn level0_sums<R: Real>(pole: [R; 3], link: &[[R; 3]], w: (f64, f64)) -> Sums<R>
             part[3] += q * c2;
             part[4] += q * s2;
         }
-        for k in 0..5 {
-            let y = part[k] - carry[k];
-            let t = sum[k] + y;
-            carry[k] = (t - sum[k]) - y;
-            sum[k] = t;
+        for ((s, c), p) in sum.iter_mut().zip(carry.iter_mut()).zip(part) {
+            let y = p - *c;
+            let t = *s + y;
+            *c = (t - *s) - y;
+            *s = t;
         }
     }
     let inv = if n == 0 {
@@ -323,7 +325,11 @@ fn level0_sums<R: Real>(pole: [R; 3], link: &[[R; 3]], w: (f64, f64)) -> Sums<R>
     } else {
         R::ONE / R::from_usize(n)
     };
-    let [a, c1, s1, c2, s2] = [0, 1, 2, 3, 4].map(|k| (sum[k] - carry[k]) * inv);
+    let mut total = [Point3::ZERO; 5];
+    for ((t, s), c) in total.iter_mut().zip(sum).zip(carry) {
+        *t = (s - c) * inv;
+    }
+    let [a, c1, s1, c2, s2] = total;
     Sums {
         pole: Point3(pole),
         a,
@@ -505,11 +511,9 @@ fn level0_column<R: Real, L: AsRef<[[R; 3]]>>(links: &[L], lv: &Level<R>, i: usi
     }
     let w = primitive_root(n).unwrap_or((1.0, 0.0));
     let (c, s) = power(w, k);
-    let (c2, s2) = power(w, (2 * k).checked_rem(n).unwrap_or(0));
     Column {
         q,
         r: [R::from_f64(c), R::from_f64(s)],
-        d: [R::from_f64(c2), R::from_f64(s2)],
     }
 }
 

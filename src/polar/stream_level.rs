@@ -2,8 +2,8 @@
 //! [`WINDOW`] columns of level `m` and the level's closed-form data (spec
 //! C2PS.md §2, §4).
 //!
-//! A *column* `k` of level `m` is the five points `q[1..=5][k]` plus the roots
-//! `(c, s)(k/N)` and `(c, s)(2k/N)` its rules need. Columns are produced in
+//! A *column* `k` of level `m` is the five points `q[1..=5][k]` plus the root
+//! `(c, s)(k/N)` its rules need (the doubled angle's follows from it). Columns are produced in
 //! order of a *virtual* index `k = −2, −1, 0, …, N+1` (`k` taken mod `N` for
 //! the data), so the periodic wrap-around needs no stored first or last
 //! columns: the few columns at both ends are simply computed twice.
@@ -34,15 +34,12 @@ pub(crate) struct Column<R> {
     pub q: [Point3<R>; 5],
     /// `(c, s)(k/N)`.
     pub r: [R; 2],
-    /// `(c, s)(2k/N)`.
-    pub d: [R; 2],
 }
 
 impl<R: Real> Column<R> {
     pub(crate) const ZERO: Self = Column {
         q: [Point3([R::ZERO; 3]); 5],
         r: [R::ZERO; 2],
-        d: [R::ZERO; 2],
     };
 }
 
@@ -109,7 +106,7 @@ pub(crate) struct Level<R> {
     /// This level's pole and 1-link sums.
     pub sums: Sums<R>,
     /// `(c, s)(1/N)`: turns the root of column `k` of the level below into
-    /// this level's column `2k+1`.
+    /// this level's column `2k+1` (unused at level 0).
     pub w: [R; 2],
 }
 
@@ -188,14 +185,10 @@ pub(crate) fn next_column<R: Real>(
         };
     }
     let [t1, t2, t3] = t;
-    let (r, d) = if even {
-        (cur.r, cur.d)
-    } else {
-        (rotate(cur.r, hi.w), rotate(cur.d, lo.w))
-    };
+    let r = if even { cur.r } else { rotate(cur.r, hi.w) };
     let f = &lo.sums;
     let h1 = f.h1(r);
-    let h2 = f.h2(d);
+    let h2 = f.h2(double(r));
     let mut q = [Point3::ZERO; 5];
     q[0] = (f.pole + f.a) * half + h1 + h2 * half;
     q[1] = if uniform_first {
@@ -208,5 +201,11 @@ pub(crate) fn next_column<R: Real>(
         q[3] = (t1 + t2 * six + t3) * eighth;
         q[4] = (t2 + t3) * half;
     }
-    Column { q, r, d }
+    Column { q, r }
+}
+
+/// `(c, s)` of the doubled angle: `(c² − s², 2cs)`.
+#[inline]
+pub(crate) fn double<R: Real>([c, s]: [R; 2]) -> [R; 2] {
+    [c * c - s * s, (c + c) * s]
 }
