@@ -27,7 +27,7 @@ pub const DEGENERATE_COLOUR: [u8; 3] = [110, 110, 110];
 /// samples, as at a Catmull-Clark cap's centre, do not wash out the rest).
 pub const QUANTILE: f64 = 0.98;
 /// Light lines across the bounding box in the highlight shading.
-pub const LINES_ACROSS: f64 = 14.0;
+pub const LINES_ACROSS: f64 = 5.0;
 /// Highlight parameter given where the normal line misses the light plane:
 /// half-way between two lines, so no stripe.
 pub const NO_LINE: f32 = 0.5;

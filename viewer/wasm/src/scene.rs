@@ -51,14 +51,9 @@ pub fn plan_options(o: &Options) -> Result<PlanOptions<'static>, String> {
             o.grid
         ));
     }
-    if o.catmull_clark {
-        return Err(
-            "Catmull-Clark everywhere needs capdiv_mesh::PlanOptions::catmull_clark, which this build does not have yet"
-                .into(),
-        );
-    }
     Ok(PlanOptions {
         depth: o.depth,
+        catmull_clark: o.catmull_clark,
         ..PlanOptions::default()
     })
 }
@@ -495,6 +490,36 @@ mod tests {
         assert_eq!(v["caps"][0]["scheme"], "c2ps");
         assert_eq!(v["caps"][0]["valence"], 12);
         assert_eq!(v["caps"][0]["count"], 2);
+    }
+
+    #[test]
+    fn the_catmull_clark_scheme_replaces_every_cap() {
+        for name in ["mushroom", "rounded-cube", "hand"] {
+            let mut sc = scene(name, 3);
+            sc.set_options(Options {
+                catmull_clark: true,
+                ..sc.options()
+            })
+            .unwrap();
+            let v: serde_json::Value = serde_json::from_str(&sc.summary()).unwrap();
+            assert_eq!(v["patches"]["polar"], 0, "{name}");
+            assert_eq!(v["patches"]["eg"], 0, "{name}");
+            assert!(
+                v["patches"]["catmull-clark"].as_u64().unwrap() > 0,
+                "{name}"
+            );
+            let caps = v["caps"].as_array().unwrap();
+            assert!(
+                caps.iter().all(|c| c["scheme"] == "catmull-clark"),
+                "{name}"
+            );
+            assert!(sc
+                .surface()
+                .position
+                .iter()
+                .flatten()
+                .all(|c| c.is_finite()));
+        }
     }
 
     #[test]

@@ -1,0 +1,250 @@
+// The viewer in a real browser: Debian's chromium, headless, driven by
+// playwright-core, against the page served from loopback by this test.
+// Run: (cd viewer/test && npm ci && node viewer.test.mjs) after viewer/build.sh.
+// Env: CHROMIUM (default /usr/bin/chromium); VIEWER_SCREENSHOT=path.png saves
+// a picture of the viewer; VIEWER_EDITS=n edits per sample in the timing
+// (default 40; the times are printed, not asserted).
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import { chromium } from 'playwright-core';
+import { serve } from '../serve.mjs';
+
+const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
+const BACKGROUND = [41, 43, 51]; // render.js BACKGROUND × 255, rounded
+
+// Reads the canvas back in the page (preserveDrawingBuffer) and keeps the
+// pixels there under a new id (no megabytes through the driver).
+async function pixels(page) {
+  await nextFrame(page);
+  return page.evaluate((bg) => {
+    const c = document.getElementById('view');
+    const o = document.createElement('canvas');
+    o.width = c.width;
+    o.height = c.height;
+    const ctx = o.getContext('2d');
+    ctx.drawImage(c, 0, 0);
+    const d = ctx.getImageData(0, 0, o.width, o.height).data;
+    let surface = 0;
+    for (let i = 0; i < d.length; i += 4) {
+      if (Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 12) surface++;
+    }
+    window.__snapshots = window.__snapshots || [];
+    window.__snapshots.push(d);
+    return { id: window.__snapshots.length - 1, width: o.width, height: o.height, surface };
+  }, BACKGROUND);
+}
+
+// Fraction of pixels whose colour differs by more than a little.
+function changed(page, a, b) {
+  return page.evaluate(([i, j]) => {
+    const [x, y] = [window.__snapshots[i], window.__snapshots[j]];
+    if (x.length !== y.length) return 1;
+    let n = 0;
+    for (let k = 0; k < x.length; k += 4) {
+      if (Math.abs(x[k] - y[k]) + Math.abs(x[k + 1] - y[k + 1]) + Math.abs(x[k + 2] - y[k + 2]) > 24) n++;
+    }
+    return n / (x.length / 4);
+  }, [a.id, b.id]);
+}
+
+async function nextFrame(page) {
+  await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+}
+
+async function dropFile(page, name, text) {
+  const dt = await page.evaluateHandle(([n, t]) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([t], n, { type: 'text/plain' }));
+    return dt;
+  }, [name, text]);
+  await page.dispatchEvent('#view', 'drop', { dataTransfer: dt });
+}
+
+async function setNet(page, on) {
+  if ((await page.isChecked('#net')) !== on) await page.click('#net');
+}
+
+test('the viewer in headless chromium', async (t) => {
+  const server = await serve(0);
+  const url = `http://127.0.0.1:${server.address().port}/`;
+  const browser = await chromium.launch({
+    executablePath: CHROMIUM,
+    args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist'],
+  });
+  const errors = [];
+  try {
+    const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+    page.on('console', (m) => { if (m.type() === 'error') errors.push(`console: ${m.text()}`); });
+    page.on('pageerror', (e) => errors.push(`page: ${e.message}`));
+    page.on('requestfailed', (r) => errors.push(`request: ${r.url()}`));
+
+    await t.test('loads with no console error and shows the surface', async () => {
+      await page.goto(url);
+      assert.equal(await page.evaluate(() => window.capdiv.ready), true);
+      await setNet(page, false);
+      const p = await pixels(page);
+      assert.deepEqual(errors, []);
+      // The mushroom fills a good part of the view.
+      const fraction = p.surface / (p.width * p.height);
+      assert.ok(fraction > 0.05, `surface covers ${fraction}`);
+      assert.match(await page.textContent('#status'), /mushroom: 206 control points, 216 faces/);
+      assert.equal(await page.isVisible('#message'), false);
+    });
+
+    await t.test('each shading changes the image', async () => {
+      await setNet(page, false);
+      await page.selectOption('#shading', 'plain');
+      const plain = await pixels(page);
+      const seen = [plain];
+      for (const s of ['highlight', 'gaussian', 'mean']) {
+        await page.selectOption('#shading', s);
+        const p = await pixels(page);
+        for (const q of seen) {
+          const f = await changed(page, p, q);
+          assert.ok(f > 0.02, `${s}: ${f} of the pixels changed`);
+        }
+        seen.push(p);
+        if (s !== 'highlight') {
+          // The legend gives the colour scale's numbers.
+          assert.equal(await page.isVisible('#legend'), true);
+          const hi = Number(await page.textContent('#legend .hi'));
+          assert.ok(hi > 0 && Number(await page.textContent('#legend .lo')) === -hi);
+        }
+      }
+      await page.selectOption('#shading', 'plain');
+      assert.equal(await page.isVisible('#legend'), false);
+      assert.deepEqual(errors, []);
+    });
+
+    await t.test('a broken file shows a message and leaves the page working', async () => {
+      await setNet(page, false);
+      const before = await pixels(page);
+      for (const [name, text, expect] of [
+        ['bad.json', '{"kind": "mesh", "vertices": [[0, 0, 0]], "faces": [[0, 1', /bad\.json: JSON/],
+        ['bad.obj', 'v 0 0 0\nv 1 0 0\nf 1 2 3\n', /bad\.obj: OBJ/],
+        ['moebius.obj', 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nf 2 1 4 3\n', /moebius\.obj: /],
+      ]) {
+        await dropFile(page, name, text);
+        await page.waitForSelector('#message:not([hidden])');
+        const msg = await page.textContent('#message');
+        assert.match(msg, expect);
+        assert.equal(await page.getAttribute('#message', 'class'), 'error');
+        // The previous surface is still shown.
+        assert.ok((await changed(page, await pixels(page), before)) < 0.001);
+      }
+      // A good file replaces the surface; the controls keep working.
+      const torus = [];
+      const n = 8;
+      const m = 6;
+      for (let i = 0; i < n; i++) for (let j = 0; j < m; j++) {
+        const a = (2 * Math.PI * i) / n;
+        const b = (2 * Math.PI * j) / m;
+        torus.push(`v ${(1 + 0.4 * Math.cos(b)) * Math.cos(a)} ${(1 + 0.4 * Math.cos(b)) * Math.sin(a)} ${0.4 * Math.sin(b)}`);
+      }
+      const id = (i, j) => ((i + n) % n) * m + ((j + m) % m) + 1;
+      for (let i = 0; i < n; i++) for (let j = 0; j < m; j++) torus.push(`f ${id(i, j)} ${id(i + 1, j)} ${id(i + 1, j + 1)} ${id(i, j + 1)}`);
+      await dropFile(page, 'torus.obj', torus.join('\n'));
+      await page.waitForFunction(() => document.getElementById('message').textContent === 'torus.obj loaded');
+      assert.match(await page.textContent('#status'), /file: 48 control points, 48 faces/);
+      assert.ok((await pixels(page)).surface > 0.03 * before.width * before.height);
+      assert.deepEqual(errors, []);
+      await page.selectOption('#sample', { label: 'mushroom' });
+      await page.waitForFunction(() => /^mushroom/.test(document.getElementById('status').textContent));
+    });
+
+    await t.test('dragging a control point changes the surface', async () => {
+      await setNet(page, false);
+      const before = await pixels(page);
+      await setNet(page, true);
+      // The mushroom's top pole.
+      const top = await page.evaluate(() => {
+        let best = 0;
+        for (let i = 0; i < window.capdiv.controlPointCount(); i++) {
+          if (window.capdiv.controlPoint(i)[2] > window.capdiv.controlPoint(best)[2]) best = i;
+        }
+        return best;
+      });
+      const z0 = (await page.evaluate((i) => window.capdiv.controlPoint(i), top))[2];
+      const [x, y] = await page.evaluate((i) => window.capdiv.controlPointOnScreen(i), top);
+      const box = await page.locator('#view').boundingBox();
+      await page.mouse.move(box.x + x, box.y + y);
+      await page.mouse.down();
+      await page.mouse.move(box.x + x, box.y + y - 60, { steps: 6 });
+      await page.mouse.up();
+      await nextFrame(page);
+      const z1 = (await page.evaluate((i) => window.capdiv.controlPoint(i), top))[2];
+      assert.ok(z1 > z0 + 0.1, `the pole rose from ${z0} to ${z1}`);
+      await setNet(page, false);
+      const after = await pixels(page);
+      const f = await changed(page, after, before);
+      assert.ok(f > 0.005, `${f} of the pixels changed`);
+      assert.match(await page.textContent('#edit'), /edit → surface [0-9.]+ ms/);
+      await page.click('#reset');
+      assert.ok((await changed(page, await pixels(page), before)) < 0.001, 'reset restores the surface');
+      assert.deepEqual(errors, []);
+    });
+
+    await t.test('the scheme and depth selectors re-plan', async () => {
+      await setNet(page, false);
+      // The mean-curvature map marks the caps' last holes (green): depth 1
+      // leaves a larger one.
+      await page.selectOption('#shading', 'mean');
+      const d4 = await pixels(page);
+      await page.selectOption('#depth', '1');
+      await nextFrame(page);
+      assert.match(await page.textContent('#status'), /2× c2ps n=12/);
+      const d1 = await pixels(page);
+      assert.ok((await changed(page, d1, d4)) > 0.0005, 'depth 1 leaves a larger hole');
+      await page.selectOption('#depth', '4');
+      await page.selectOption('#scheme', 'catmull-clark');
+      await nextFrame(page);
+      // The poles become Catmull-Clark caps of valence 12 (and the fan
+      // triangles, refined, caps of valence 3 at their centres).
+      const status = await page.textContent('#status');
+      assert.match(status, /2× catmull-clark n=12/);
+      assert.doesNotMatch(status, /c2ps|eg n=/);
+      const cc = await pixels(page);
+      assert.ok((await changed(page, cc, d4)) > 0.0005, 'Catmull-Clark caps look different');
+      await page.selectOption('#scheme', 'capdiv');
+      await nextFrame(page);
+      assert.match(await page.textContent('#status'), /caps: 2× c2ps n=12/);
+      await page.selectOption('#shading', 'plain');
+      assert.deepEqual(errors, []);
+    });
+
+    if (process.env.VIEWER_SCREENSHOT) {
+      await page.selectOption('#sample', { label: 'mushroom' });
+      await page.selectOption('#shading', 'highlight');
+      await setNet(page, true);
+      await nextFrame(page);
+      await page.screenshot({ path: process.env.VIEWER_SCREENSHOT });
+      await page.selectOption('#shading', 'plain');
+    }
+
+    await t.test('edit-to-surface times per sample (printed)', async () => {
+      const reps = Number(process.env.VIEWER_EDITS || 40);
+      const names = await page.$$eval('#sample option', (os) => os.map((o) => o.textContent));
+      await page.selectOption('#depth', '4');
+      await page.selectOption('#scheme', 'capdiv');
+      const rows = [];
+      for (const name of names) {
+        await page.selectOption('#sample', { label: name });
+        await page.waitForFunction((n) => document.getElementById('status').textContent.startsWith(`${n}:`), name);
+        const times = await page.evaluate((r) => window.capdiv.benchmarkEdits(r), reps);
+        const s = await page.evaluate(() => window.capdiv.summary());
+        times.sort((a, b) => a - b);
+        const median = times[Math.floor(times.length / 2)];
+        rows.push(`| ${name} | ${s.vertices} | ${Object.values(s.patches).reduce((a, b) => a + b, 0)} | ${s.surface_vertices} | ${median.toFixed(2)} | ${times[times.length - 1].toFixed(2)} |`);
+        assert.ok(times.every(Number.isFinite));
+      }
+      console.log(`\nedit → surface (WASM evaluate + re-sample + paint + buffer upload), depth 4, ${2 * reps} edits per sample, ms:`);
+      console.log('| mesh | control points | patches | samples | median | max |\n|---|---:|---:|---:|---:|---:|');
+      console.log(rows.join('\n'));
+      assert.deepEqual(errors, []);
+    });
+  } finally {
+    await browser.close();
+    server.close();
+  }
+});
