@@ -5,4 +5,4 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 (cd "$here/wasm" && cargo build --release --target wasm32-unknown-unknown)
 mkdir -p "$here/build"
-cp "$here/wasm/target/wasm32-unknown-unknown/release/capdiv_viewer.wasm" "$here/build/"
+cp "${CARGO_TARGET_DIR:-$here/wasm/target}/wasm32-unknown-unknown/release/capdiv_viewer.wasm" "$here/build/"

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The browser viewer's checks (issue 8), for CI and by hand. Installs what it
+# needs on a fresh Debian machine (chromium and node from apt, the wasm32
+# target, playwright-core by `npm ci`), then:
+#   1. fmt, clippy and host tests of the WASM crate (viewer/wasm, own workspace);
+#   2. its release build for wasm32-unknown-unknown, copied to viewer/build/
+#      where the page loads it (viewer/build.sh; not in git);
+#   3. viewer/test/viewer.test.mjs: the page served from loopback, driven in
+#      headless chromium (WebGL through SwiftShader): loads with no console
+#      error, shows the surface, every shading changes the image, broken files
+#      show a message, a control-point drag changes the surface, scheme and
+#      depth re-plan; prints the edit-to-surface times per sample.
+# Prints its run time.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+start=$(date +%s)
+step() { echo "== viewer: $* ($(( $(date +%s) - start )) s)"; }
+
+step "toolchain pieces"
+rustup target list --installed | grep -qx wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
+missing=()
+[ -x "${CHROMIUM:-/usr/bin/chromium}" ] || missing+=(chromium)
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
+if [ ${#missing[@]} -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+"${CHROMIUM:-/usr/bin/chromium}" --version
+echo "node $(node --version)"
+
+# The own-workspace crate uses its own target directory.
+unset CARGO_TARGET_DIR RUSTFLAGS CARGO_BUILD_TARGET
+
+step "viewer/wasm: fmt, clippy, host tests"
+(cd viewer/wasm && cargo fmt --check && cargo clippy --all-targets -- -D warnings && cargo test --quiet)
+
+step "viewer/wasm: wasm32 release build -> viewer/build/"
+bash viewer/build.sh
+ls -l viewer/build/capdiv_viewer.wasm
+
+step "viewer/test: npm ci"
+(cd viewer/test && npm ci --no-audit --no-fund --loglevel=error)
+
+step "viewer/test: the page in headless chromium"
+(cd viewer/test && node --test-reporter=spec viewer.test.mjs)
+
+step "done"
+echo "ci-viewer: $(( $(date +%s) - start )) s"
