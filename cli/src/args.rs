@@ -178,6 +178,11 @@ pub struct PatchesArgs {
     /// Pretty-print the JSON.
     #[arg(long)]
     pub pretty: bool,
+    /// Polar inputs, JSON or OBJ: stream the rings (kernel `PolarStream`) and
+    /// write the patches as they are computed — the same patches in the same
+    /// order (to rounding), in memory that does not grow with the depth.
+    #[arg(long)]
+    pub stream: bool,
     /// Input and output.
     #[command(flatten)]
     pub io: Io,

@@ -20,6 +20,15 @@
 //! K ≥ 5, from level 1 when K is 3 or 4, and from level 2 when K = 2 (old links
 //! up to K give new links up to 2K−1, §2). Rings before that do not exist and are
 //! not emitted, so `--depth 1` on a 2-link input prints no patch at all.
+//!
+//! **`--stream`** (polar inputs, JSON or OBJ): the rings come from the
+//! kernel's streaming sweep (`PolarStream`, spec C2PS.md §4 eq. (30)) and are
+//! written as they are computed, in the order above (one sweep per level and
+//! span), so memory does not grow with the depth: the sweep's state is
+//! fixed (depth ≤ [`STREAM_MAX_DEPTH`]) and nothing is collected. The patches
+//! equal the in-place ones to rounding (f64: 1e-12 of the input's size; f32:
+//! 1e-6). All checks run before the first byte is written; a file output is
+//! written aside and renamed at the end, so an error leaves no partial file.
 
 use super::eg::{read_table, subdivision};
 use super::polar::Config;
@@ -30,11 +39,12 @@ use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
 use crate::mesh::Mesh;
 use crate::obj::to_obj;
-use crate::output::{to_json, LeveledPatch, PatchOutput, Sink};
+use crate::output::{indent, to_json, LeveledPatch, PatchOutput, Sink};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
 use crate::Scalar;
-use capdiv::{FirstStep, OuterRegion, PolarNet};
+use capdiv::{FirstStep, OuterRegion, PolarNet, PolarStream, StreamOptions};
+use std::io::Write;
 
 /// The patches of a configuration through some depth, `K×K` control points
 /// each.
@@ -53,20 +63,7 @@ pub struct PatchSet<R, const K: usize> {
 impl<R: Scalar, const K: usize> PatchSet<R, K> {
     /// One-line description for OBJ headers and the demo.
     pub fn describe(&self) -> String {
-        let rings = match (self.rings.first(), self.rings.last()) {
-            (Some(a), Some(b)) => format!("rings of levels {}..={}", a.0, b.0),
-            _ => "no ring".to_string(),
-        };
-        let kind = format!("bi-{} Bézier patches", K - 1);
-        if self.outer == 0 {
-            return format!("{} {kind} in {rings}", self.patches.len());
-        }
-        format!(
-            "{} {kind}: {} in the level-0 outer region, {} in {rings}",
-            self.patches.len(),
-            self.outer,
-            self.patches.len() - self.outer
-        )
+        describe(self.patches.len(), self.outer, &self.rings, K)
     }
 
     /// Tessellates the patches, `grid` segments per side, tagged by level.
@@ -90,6 +87,23 @@ impl<R: Scalar, const K: usize> PatchSet<R, K> {
     }
 }
 
+/// [`PatchSet::describe`] from the counts: `total` patches of `K×K` points,
+/// `outer` of them in the outer region, `rings` as `(level, patches)`.
+fn describe(total: usize, outer: usize, rings: &[(u32, usize)], k: usize) -> String {
+    let rings = match (rings.first(), rings.last()) {
+        (Some(a), Some(b)) => format!("rings of levels {}..={}", a.0, b.0),
+        _ => "no ring".to_string(),
+    };
+    let kind = format!("bi-{} Bézier patches", k - 1);
+    if outer == 0 {
+        return format!("{total} {kind} in {rings}");
+    }
+    format!(
+        "{total} {kind}: {outer} in the level-0 outer region, {} in {rings}",
+        total - outer
+    )
+}
+
 /// Runs the command.
 pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
     let source = Source::read(&args.io.file)?;
@@ -102,6 +116,12 @@ pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
                 ));
             }
             let first = args.first_step.unwrap_or(FirstStepArg::Uniform).into();
+            if args.stream {
+                return match args.precision {
+                    Precision::F64 => stream::<f64>(&name, &input, args, first),
+                    Precision::F32 => stream::<f32>(&name, &input, args, first),
+                };
+            }
             match args.precision {
                 Precision::F64 => {
                     format::<f64, 4>(&collect(&name, &input, args.depth, first)?, args, &name)?
@@ -110,6 +130,11 @@ pub fn run(args: &PatchesArgs) -> Result<Outcome, CliError> {
                     format::<f32, 4>(&collect(&name, &input, args.depth, first)?, args, &name)?
                 }
             }
+        }
+        _ if args.stream => {
+            return Err(CliError::Usage(
+                "--stream applies to polar inputs only".into(),
+            ));
         }
         other => {
             if args.first_step.is_some() {
@@ -269,5 +294,256 @@ impl<R: Scalar> NetJob<R> for Job<'_, R> {
             rings,
             valence: net.valence(),
         })
+    }
+}
+
+/// Deepest level `--stream` reaches: the sweep's state holds one window of
+/// 4 columns per level (`PolarStream<R, 30>`: 21 KiB in f64).
+pub const STREAM_MAX_DEPTH: usize = 30;
+
+/// `--stream`: validates, then writes the patches of `input` through ring
+/// `args.depth` as the sweeps produce them (see the module docs).
+fn stream<R: Scalar>(
+    name: &str,
+    input: &PolarInput,
+    args: &PatchesArgs,
+    first: FirstStep,
+) -> Result<Outcome, CliError> {
+    if args.format == PatchFormat::Png {
+        return Err(CliError::Usage(
+            "--stream writes json or obj (a png needs the whole mesh)".into(),
+        ));
+    }
+    let kernel = |e| CliError::kernel(name, e);
+    let config = Config::<R>::of(input);
+    let (pole, links) = (config.pole, &config.links);
+    let outer = OuterRegion::new(pole, links).map_err(kernel)?;
+    let mut state = Box::new(PolarStream::<R, STREAM_MAX_DEPTH>::empty());
+    // Every check before the first byte: the whole sweep's, then the rings'
+    // sizes (a level's ring has N patches per span, or none below 5 links).
+    state
+        .sweep(pole, links, StreamOptions::depth(args.depth))
+        .map_err(kernel)?;
+    let mut rings = Vec::new();
+    for level in 0..=args.depth {
+        let one = StreamOptions::depth(level).only(level, Some(0));
+        let len = state.sweep(pole, links, one).map_err(kernel)?.len();
+        if len > 0 {
+            rings.push((level, 2 * len));
+        }
+    }
+    let total = outer.len() + rings.iter().map(|r| r.1).sum::<usize>();
+    let mut out = StreamOut::open(args.io.output.as_deref())?;
+    let io = |e: std::io::Error| CliError::Io {
+        path: args
+            .io
+            .output
+            .as_ref()
+            .map_or("<stdout>".into(), |p| p.display().to_string()),
+        message: e.to_string(),
+    };
+    let grid = args.grid as usize;
+    let mut writer = match args.format {
+        PatchFormat::Obj => {
+            let side = grid.max(1) + 1;
+            let title = format!("capdiv patches --depth {} {name}", args.depth);
+            let header = [
+                title,
+                describe(total, outer.len(), &rings, 4),
+                format!(
+                    "each patch sampled on a {grid}x{grid} grid: {} vertices, {} quads; \
+                     vertices on shared patch edges are duplicated (not welded)",
+                    total * side * side,
+                    total * grid.max(1) * grid.max(1)
+                ),
+            ];
+            for line in header {
+                writeln!(out, "# {line}").map_err(io)?;
+            }
+            PatchWriter::Obj { grid }
+        }
+        _ => PatchWriter::Json {
+            pretty: args.pretty,
+            count: 0,
+        },
+    };
+    for patch in outer.patches() {
+        writer.patch(&mut out, 0, &patch).map_err(io)?;
+    }
+    for &(level, _) in &rings {
+        for span in [0u8, 1] {
+            let opts = StreamOptions::depth(level)
+                .first(first)
+                .only(level, Some(span));
+            let sweep = state.sweep(pole, links, opts).map_err(kernel)?;
+            for p in sweep {
+                writer.patch(&mut out, level, &p.patch).map_err(io)?;
+            }
+        }
+    }
+    writer.finish(&mut out, total).map_err(io)?;
+    out.commit().map_err(io)?;
+    // Everything is written: nothing left for the caller to write.
+    Ok(Outcome::new(Vec::new(), Sink::Stdout))
+}
+
+/// How `--stream` formats patches: the bytes `format` writes for the whole
+/// set, piece by piece.
+enum PatchWriter {
+    /// `to_json` of the list: compact elements joined by `,` (pretty: each
+    /// element indented as `indent` does inside the array).
+    Json { pretty: bool, count: usize },
+    /// `to_obj` of the tessellated patches: `v`/`vn` lines per patch as they
+    /// come, the quads (pure index arithmetic) at the end.
+    Obj { grid: usize },
+}
+
+impl PatchWriter {
+    fn patch<R: Scalar>(
+        &mut self,
+        out: &mut impl std::io::Write,
+        level: u32,
+        patch: &capdiv::BicubicPatch<R>,
+    ) -> std::io::Result<()> {
+        match self {
+            PatchWriter::Json { pretty, count } => {
+                let compact = serde_json::to_vec(&PatchOutput::new(level, patch))
+                    .map_err(std::io::Error::other)?;
+                out.write_all(if *count == 0 { b"[" } else { b"," })?;
+                if *pretty {
+                    // indent("[e]") = "[" + "\n  E" + "\n]": keep the middle.
+                    let mut one = Vec::with_capacity(compact.len() + 2);
+                    one.push(b'[');
+                    one.extend_from_slice(&compact);
+                    one.push(b']');
+                    let text = indent(&one);
+                    out.write_all(text.get(1..text.len().saturating_sub(2)).unwrap_or(&[]))?;
+                } else {
+                    out.write_all(&compact)?;
+                }
+                *count += 1;
+            }
+            PatchWriter::Obj { grid } => {
+                let mesh = Mesh::from_patches([(level, patch)], *grid);
+                for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
+                    let [x, y, z] = p.0;
+                    let [a, b, c] = n.0;
+                    writeln!(out, "v {x} {y} {z}")?;
+                    writeln!(out, "vn {a} {b} {c}")?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(&self, out: &mut impl std::io::Write, total: usize) -> std::io::Result<()> {
+        match *self {
+            PatchWriter::Json { pretty, count } => {
+                if count == 0 {
+                    out.write_all(&to_json(&Vec::<PatchOutput<f64>>::new(), pretty))
+                } else {
+                    out.write_all(if pretty { b"\n]\n" } else { b"]\n" })
+                }
+            }
+            PatchWriter::Obj { grid } => {
+                let grid = grid.max(1);
+                let side = grid + 1;
+                for k in 0..total {
+                    let base = k * side * side + 1; // OBJ indices are 1-based
+                    for a in 0..grid {
+                        for b in 0..grid {
+                            let idx = |a: usize, b: usize| base + a * side + b;
+                            let [a, b, c, d] =
+                                [idx(a, b), idx(a + 1, b), idx(a + 1, b + 1), idx(a, b + 1)];
+                            writeln!(out, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
+                        }
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Where `--stream` writes: standard output, or a file written aside and
+/// renamed over the target at the end (as `Sink::File` does in one piece).
+enum StreamOut {
+    Stdout(std::io::BufWriter<std::io::StdoutLock<'static>>),
+    File {
+        w: std::io::BufWriter<std::fs::File>,
+        tmp: std::path::PathBuf,
+        path: std::path::PathBuf,
+        committed: bool,
+    },
+}
+
+impl StreamOut {
+    fn open(path: Option<&std::path::Path>) -> Result<Self, CliError> {
+        let Some(path) = path else {
+            return Ok(StreamOut::Stdout(std::io::BufWriter::new(
+                std::io::stdout().lock(),
+            )));
+        };
+        let mut tmp_name = std::ffi::OsString::from(".");
+        tmp_name.push(path.file_name().unwrap_or_default());
+        tmp_name.push(format!(".{}.stream.tmp", std::process::id()));
+        let tmp = path.with_file_name(tmp_name);
+        let file = std::fs::File::create(&tmp).map_err(|e| CliError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Ok(StreamOut::File {
+            w: std::io::BufWriter::new(file),
+            tmp,
+            path: path.to_path_buf(),
+            committed: false,
+        })
+    }
+
+    fn commit(&mut self) -> std::io::Result<()> {
+        match self {
+            StreamOut::Stdout(w) => w.flush(),
+            StreamOut::File {
+                w,
+                tmp,
+                path,
+                committed,
+            } => {
+                w.flush()?;
+                w.get_ref().sync_all()?;
+                std::fs::rename(&*tmp, &*path)?;
+                *committed = true;
+                Ok(())
+            }
+        }
+    }
+}
+
+impl Drop for StreamOut {
+    /// An unfinished file output (an error midway) is removed.
+    fn drop(&mut self) {
+        if let StreamOut::File {
+            tmp,
+            committed: false,
+            ..
+        } = self
+        {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
+impl std::io::Write for StreamOut {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            StreamOut::Stdout(w) => w.write(buf),
+            StreamOut::File { w, .. } => w.write(buf),
+        }
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            StreamOut::Stdout(w) => w.flush(),
+            StreamOut::File { w, .. } => w.flush(),
+        }
     }
 }
