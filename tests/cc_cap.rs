@@ -64,7 +64,12 @@ fn pts(p: &BicubicPatch<f64>) -> [[P3; 4]; 4] {
     p.points.map(|row| row.map(|q| q.0))
 }
 
-const VALENCES: [usize; 10] = [3, 4, 5, 6, 7, 8, 9, 10, 11, 12];
+/// Valences 3..=12 (under Miri, ~1000× slower: 3, 5 and 12).
+const VALENCES: &[usize] = if cfg!(miri) {
+    &[3, 5, 12]
+} else {
+    &[3, 4, 5, 6, 7, 8, 9, 10, 11, 12]
+};
 const SAMPLES: [f64; 5] = [0.0, 0.25, 0.5, 0.9, 1.0];
 
 /// Ring patches equal the reference's B-spline patches of its refined grid
@@ -74,13 +79,14 @@ const SAMPLES: [f64; 5] = [0.0, 0.25, 0.5, 0.9, 1.0];
 #[test]
 fn ring_patches_equal_reference_bspline() {
     let mut worst = 0.0f64;
-    for n in VALENCES {
+    for &n in VALENCES {
         let c0 = cnet(n, n as u64, 0.5);
         let scale = size(&c0);
         let mut storage = Vec::new();
         let mut k = cap(&c0, &mut storage);
         let mut c = c0.clone();
-        for _level in 1..=5 {
+        // Under Miri (~10⁴× slower than native here) one level.
+        for _level in 1..=if cfg!(miri) { 1 } else { 5 } {
             let ext = refine_extended(n, &c);
             k.step().unwrap();
             assert_eq!(k.ring_len(), 3 * n);
@@ -118,14 +124,15 @@ fn ring_patches_equal_reference_bspline() {
 #[test]
 fn rings_and_sectors_join_c2() {
     let mut worst = 0.0f64;
-    for n in VALENCES {
+    for &n in VALENCES {
         let c0 = cnet(n, 100 + n as u64, 0.5);
         let scale = size(&c0);
         let mut storage = Vec::new();
         let mut k = cap(&c0, &mut storage);
         k.step().unwrap();
         let mut prev: Vec<[[P3; 4]; 4]> = k.ring_patches().map(|p| pts(&p)).collect();
-        for level in 2..=6 {
+        // Under Miri levels 2 and 3.
+        for level in 2..=if cfg!(miri) { 3 } else { 6 } {
             k.step().unwrap();
             let cur: Vec<[[P3; 4]; 4]> = k.ring_patches().map(|p| pts(&p)).collect();
             let h = k.ring_patch_domain(0).unwrap().size;
@@ -208,7 +215,8 @@ fn lambda_cc(n: usize) -> f64 {
 /// size; bound 1e-13).
 #[test]
 fn ring_points_converge_to_limit() {
-    for n in VALENCES {
+    // Under Miri (16 levels are needed for the rate) valence 3 only.
+    for &n in if cfg!(miri) { &[3usize][..] } else { VALENCES } {
         let c0 = cnet(n, 200 + n as u64, 0.5);
         let scale = size(&c0);
         let mut storage = Vec::new();
@@ -249,7 +257,8 @@ fn ring_points_converge_to_limit() {
 /// `∂u × ∂v`.
 #[test]
 fn normal_orthogonal_to_ring_tangents() {
-    for n in VALENCES {
+    // Under Miri (16 levels are needed for the ratio) valence 3 only.
+    for &n in if cfg!(miri) { &[3usize][..] } else { VALENCES } {
         let c0 = cnet(n, 300 + n as u64, 0.5);
         let mut storage = Vec::new();
         let mut k = cap(&c0, &mut storage);
@@ -340,7 +349,8 @@ fn regular_valence_4_is_the_bspline_of_the_grid() {
     let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(4)];
     let mut k = CcCap::new(at(0.0, 0.0), &nodes, &mut storage).unwrap();
     let mut worst = 0.0f64;
-    for _ in 0..6 {
+    // Under Miri two levels.
+    for _ in 0..if cfg!(miri) { 2 } else { 6 } {
         k.step().unwrap();
         for (idx, patch) in k.ring_patches().enumerate() {
             let dom = k.ring_patch_domain(idx).unwrap();
@@ -450,7 +460,13 @@ fn step_overflow_and_out_of_domain() {
 /// 127), Degenerate normal for a flat-to-a-point net; large valences fine.
 #[test]
 fn tangent_errors() {
-    for (n, ok) in [(131usize, false), (128, true), (3 * 64, true), (127, true)] {
+    // Under Miri the unsupported valence and one supported one.
+    let cases: &[(usize, bool)] = if cfg!(miri) {
+        &[(131, false), (128, true)]
+    } else {
+        &[(131, false), (128, true), (3 * 64, true), (127, true)]
+    };
+    for &(n, ok) in cases {
         let c = cnet(n, 4, 0.1);
         let mut storage = Vec::new();
         let mut k = cap(&c, &mut storage);
@@ -482,7 +498,7 @@ fn tangent_errors() {
 #[test]
 fn f32_tracks_f64() {
     let mut worst = 0.0f64;
-    for n in VALENCES {
+    for &n in VALENCES {
         let c = cnet(n, 500 + n as u64, 0.5);
         let scale = size(&c);
         let c32: Vec<[f32; 3]> = c.iter().map(|p| p.map(|v| v as f32)).collect();
@@ -490,7 +506,8 @@ fn f32_tracks_f64() {
         let mut k64 = cap(&c, &mut s64);
         let mut s32 = vec![Point3::<f32>::ZERO; CcCap::<f32>::storage_len(n)];
         let mut k32 = CcCap::new(c32[6 * n], &c32[..6 * n], &mut s32).unwrap();
-        for _ in 0..8 {
+        // Under Miri two steps (rounding does not grow with the level).
+        for _ in 0..if cfg!(miri) { 2 } else { 8 } {
             k64.step().unwrap();
             k32.step().unwrap();
             for s in 0..n {

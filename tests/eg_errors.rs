@@ -203,6 +203,10 @@ fn check(n: usize, t: &[Rows; 5]) -> Result<(), Error> {
 }
 
 #[test]
+#[cfg_attr(
+    miri,
+    ignore = "RuleTable::new's spectral check runs 96 EG steps (minutes under Miri per table)"
+)]
 fn user_table_shape() {
     let good = table5();
     assert_eq!(check(5, &good), Ok(()));
@@ -250,6 +254,10 @@ fn user_table_shape() {
 }
 
 #[test]
+#[cfg_attr(
+    miri,
+    ignore = "RuleTable::new's spectral check runs 96 EG steps (minutes under Miri per table)"
+)]
 fn user_table_symmetry() {
     let good = table5();
     // A11 row 0: a_10 must equal a_01 (column 1 vs 4).
@@ -297,6 +305,10 @@ fn scaled(rows: &[[i32; 12]], f: f64) -> Rows {
 }
 
 #[test]
+#[cfg_attr(
+    miri,
+    ignore = "RuleTable::new's spectral check runs 96 EG steps (minutes under Miri per table)"
+)]
 fn user_table_row_sum_and_spectrum() {
     let good = table5();
     // A22 scaled by 1.9: shape and symmetry intact, but the c0 weights a0 of

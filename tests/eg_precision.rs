@@ -66,12 +66,17 @@ proptest! {
     fn f32_tracks_f64(n in 3usize..=5, seed in any::<u64>(), noise in 0.0f64..1.0) {
         let mut rng = Rng(seed | 1);
         let ext = ExtNet::random(n, &mut rng, noise);
-        let w = worst_relative(&ext, 12);
+        // Under Miri (an EG step and ring take seconds there) one step.
+        let w = worst_relative(&ext, if cfg!(miri) { 1 } else { 12 });
         prop_assert!(w < F32_BOUND, "n={} relative {:e}", n, w);
     }
 }
 
 #[test]
+#[cfg_attr(
+    miri,
+    ignore = "a report over 1,800 EG steps in f32 and f64 (hours under Miri); f32_tracks_f64 runs reduced"
+)]
 fn f32_vs_f64_report() {
     let mut rng = Rng(31337);
     for n in [3usize, 4, 5] {

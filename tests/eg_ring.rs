@@ -118,7 +118,11 @@ fn worst_c2_mismatch(ext: &ExtNet, steps: usize) -> (f64, usize) {
         lines.push(size / 2.0);
         lines.push(size);
     }
-    let ts: Vec<f64> = (0..=16).map(|k| 2.0 * k as f64 / 16.0 + 0.013).collect();
+    // Under Miri (~10⁴× slower than native here) 5 samples per line.
+    let count = if cfg!(miri) { 4 } else { 16 };
+    let ts: Vec<f64> = (0..=count)
+        .map(|k| 2.0 * k as f64 / count as f64 + 0.013)
+        .collect();
     for s in 0..n {
         for &c in &lines {
             for &t in &ts {
@@ -145,6 +149,10 @@ fn worst_c2_mismatch(ext: &ExtNet, steps: usize) -> (f64, usize) {
 const C2_TOL: f64 = 1e-9;
 
 #[test]
+#[cfg_attr(
+    miri,
+    ignore = "9 EG steps and ~10⁴ Bernstein jets (an hour under Miri); rings_join_c2_random runs reduced"
+)]
 fn rings_join_c2_n3_n4_n5_three_rings() {
     let mut rng = Rng(0x5eed_0001);
     for n in [3, 4, 5] {
@@ -172,7 +180,8 @@ proptest! {
     fn rings_join_c2_random(n in 3usize..=5, seed in any::<u64>(), noise in 0.0f64..1.0) {
         let mut rng = Rng(seed | 1);
         let ext = ExtNet::random(n, &mut rng, noise);
-        let (worst, _) = worst_c2_mismatch(&ext, 2);
+        // Under Miri one ring.
+        let (worst, _) = worst_c2_mismatch(&ext, if cfg!(miri) { 1 } else { 2 });
         prop_assert!(worst < C2_TOL, "n={} worst {:e}", n, worst);
     }
 }
@@ -213,7 +222,8 @@ fn valence4_rings_are_the_bicubic_cap() {
     let cap = c.regular_cap().unwrap();
     let mut sub = EgSubdivision::from_cnet(&c).unwrap();
     let mut worst = 0.0f64;
-    for m in 0..4 {
+    // Under Miri one ring.
+    for m in 0..if cfg!(miri) { 1 } else { 4 } {
         sub.step().unwrap();
         let w = 0.5f64.powi(m) / 2.0;
         for (k, p) in sub.ring_patches().enumerate() {
@@ -240,7 +250,8 @@ fn valence4_rings_are_the_bicubic_cap() {
 #[test]
 fn kernel_evaluation_and_normals_across_boundaries() {
     let mut rng = Rng(0x5eed_0004);
-    for n in [3usize, 5] {
+    // Under Miri valence 3 only.
+    for &n in if cfg!(miri) { &[3usize][..] } else { &[3, 5] } {
         let ext = ExtNet::random(n, &mut rng, 0.3);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
         let mut sub = EgSubdivision::from_cnet(&c).unwrap();

@@ -165,9 +165,17 @@ fn check<R: Real>(n: usize, seed: u64, levels: u32) -> usize {
 #[test]
 fn ring_patches_are_bit_identical_to_the_literal_construction() {
     let mut compared = 0;
-    for (n, seed) in [(3, 71), (4, 72), (5, 73), (3, 74), (5, 75)] {
-        compared += check::<f64>(n, seed, 4);
-        compared += check::<f32>(n, seed + 100, 4);
+    // Under Miri (an EG step and ring take seconds there) valences 3 and 5,
+    // one level.
+    let (nets, levels): (&[(usize, u64)], u32) = if cfg!(miri) {
+        (&[(3, 71), (5, 73)], 1)
+    } else {
+        (&[(3, 71), (4, 72), (5, 73), (3, 74), (5, 75)], 4)
+    };
+    for &(n, seed) in nets {
+        compared += check::<f64>(n, seed, levels);
+        compared += check::<f32>(n, seed + 100, levels);
     }
-    assert_eq!(compared, 2 * 4 * 3 * (3 + 4 + 5 + 3 + 5));
+    let valences: usize = nets.iter().map(|&(n, _)| n).sum();
+    assert_eq!(compared, 2 * levels as usize * 3 * valences);
 }

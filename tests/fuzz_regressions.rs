@@ -71,7 +71,8 @@ fn cc_normal_of_mixed_scale_net_is_unit() {
     let a = [0.0, -91.59375, c];
     let b = [c; 3];
     let prefix = [a, b, b, a, b, b, a, a, b, b, a, b];
-    for n in 3..=11 {
+    // Under Miri valences 3, 7 and 11 (the finding's).
+    for n in (3..=11).step_by(if cfg!(miri) { 4 } else { 1 }) {
         let nodes: Vec<[f32; 3]> = (0..6 * n).map(|i| prefix[i % 12]).collect();
         let mut storage = vec![Point3::<f32>::ZERO; CcCap::<f32>::storage_len(n)];
         let mut cap = CcCap::new([c; 3], &nodes, &mut storage).unwrap();

@@ -169,7 +169,9 @@ mod tests {
     #[test]
     fn f32_roots_are_the_f64_roots_rounded() {
         let rounded = |v: [f64; 2]| v.map(|x| x as f32);
-        let mut bases: std::vec::Vec<usize> = (3..=MAX_ODD_PART).step_by(2).collect();
+        // Under Miri (~10⁴× slower) every 8th odd part: 3, 19, .., 115.
+        let every = if cfg!(miri) { 16 } else { 2 };
+        let mut bases: std::vec::Vec<usize> = (3..=MAX_ODD_PART).step_by(every).collect();
         bases.push(4);
         let mut checked = 0;
         for base in bases {
@@ -186,7 +188,7 @@ mod tests {
                 checked += 1;
             }
         }
-        assert!(checked > 3000);
+        assert!(checked > if cfg!(miri) { 700 } else { 3000 });
     }
 
     /// Within 2^-46 of `f64`'s `cos`, `sin` before rounding (double-single

@@ -147,6 +147,9 @@ mod tests {
         (*seed >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
     }
 
+    /// Random operands per test (under Miri, ~10⁴× slower, 500).
+    const RUNS: usize = if cfg!(miri) { 500 } else { 20_000 };
+
     /// Each operation is within a few units of 2^-48 (relative to the
     /// operands' magnitude) of the `f64` result of the same operation on the
     /// same (double-single) operands; `f64` is 5 bits finer, so it serves as
@@ -155,7 +158,7 @@ mod tests {
     fn operations_carry_about_48_bits() {
         let mut seed = 7;
         let tol = 8.0 * 2f64.powi(-48);
-        for _ in 0..20_000 {
+        for _ in 0..RUNS {
             let (x, y) = (pseudo(&mut seed), pseudo(&mut seed));
             let (a, b) = (Ds::from_f64(x), Ds::from_f64(y));
             let (va, vb) = (val(a), val(b));
@@ -178,7 +181,7 @@ mod tests {
     #[test]
     fn error_free_transformations_are_exact() {
         let mut seed = 11;
-        for _ in 0..20_000 {
+        for _ in 0..RUNS {
             let (a, b) = (pseudo(&mut seed) as f32, pseudo(&mut seed) as f32);
             let s = two_sum(a, b);
             assert_eq!(val(s), a as f64 + b as f64);
@@ -191,7 +194,7 @@ mod tests {
     #[test]
     fn round_is_nearest() {
         let mut seed = 13;
-        for _ in 0..20_000 {
+        for _ in 0..RUNS {
             let x = pseudo(&mut seed);
             let d = Ds::from_f64(x);
             assert_eq!(d.round(), val(d) as f32);
