@@ -133,9 +133,10 @@ function requestDraw() {
 }
 
 // One edit: WASM evaluate (+ re-sample, paint) and the buffer upload.
-function edit(i, p) {
+function edit(i, p, split) {
   const t0 = performance.now();
   state.viewer.moveVertex(i, p);
+  if (split) split.push(performance.now() - t0);
   const s = state.viewer.surface();
   state.renderer.uploadDirty(s);
   state.renderer.uploadNet(state.viewer.control(), false);
@@ -363,7 +364,8 @@ window.capdiv = {
   },
   // Edits control points `count` times (a ±1 % nudge of the box size along
   // x and back, cycling through points spread over the mesh and the point
-  // of the largest cap); returns the edit-to-surface times in ms.
+  // of the largest cap); returns the edit-to-surface times in ms (`times`)
+  // and their WASM part (`wasm`).
   benchmarkEdits(count) {
     const c = state.viewer.control();
     const b = state.viewer.bounds();
@@ -375,14 +377,15 @@ window.capdiv = {
     for (const v of c.edges) degree[v]++;
     points.push(degree.indexOf(Math.max(...degree)));
     const times = [];
+    const wasm = [];
     for (let r = 0; r < count; r++) {
       const i = points[r % points.length];
       const p = controlPoint(i);
-      times.push(edit(i, [p[0] + nudge, p[1], p[2]]));
-      times.push(edit(i, p));
+      times.push(edit(i, [p[0] + nudge, p[1], p[2]], wasm));
+      times.push(edit(i, p, wasm));
     }
     state.viewer.rescale();
     uploadAll(false);
-    return times;
+    return { times, wasm };
   },
 };

@@ -47,7 +47,7 @@ export class Camera {
     this.target = [0, 1, 2].map((k) => 0.5 * (lo[k] + hi[k]));
     const r = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
     this.radius = r;
-    this.distance = (0.95 * r) / Math.sin(this.fovy / 2);
+    this.distance = (0.8 * r) / Math.sin(this.fovy / 2);
   }
 
   eye() {

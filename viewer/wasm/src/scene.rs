@@ -58,21 +58,22 @@ pub fn plan_options(o: &Options) -> Result<PlanOptions<'static>, String> {
     })
 }
 
-/// Vertices [`auto_grid`] aims at (about 2 MB of vertex data on the GPU).
-pub const VERTEX_BUDGET: usize = 60_000;
+/// What [`auto_grid`] keeps its estimate of the surface's vertices under.
+pub const VERTEX_BUDGET: usize = 40_000;
 
 /// The grid for `plan` when the page leaves it to the viewer: the largest of
-/// 8, 4, 2 whose samples of the coarse patches (regular faces, and the first
-/// ring of each cap counted as patches of that size — deeper rings add about
-/// as much again, shrinking) stay within [`VERTEX_BUDGET`].
+/// 8, 4, 2 with `(regular + 2·caps)·(g + 1)² ≤` [`VERTEX_BUDGET`], else 1 —
+/// `regular` the regular patches, `caps` the caps' sectors (their rings,
+/// halving in size and in grid, add about two coarse patches per sector at
+/// depth 4).
 pub fn auto_grid(plan: &SurfacePlan<'_>) -> usize {
-    let coarse = plan.regular.len()
-        + plan.polar.iter().map(|p| p.valence).sum::<usize>()
+    let caps = plan.polar.iter().map(|p| p.valence).sum::<usize>()
         + plan.ev.iter().map(|e| e.sectors.len()).sum::<usize>();
-    [8, 4]
+    let coarse = plan.regular.len() + 2 * caps;
+    [8, 4, 2]
         .into_iter()
-        .find(|g| 2 * coarse * (g + 1) * (g + 1) <= VERTEX_BUDGET)
-        .unwrap_or(2)
+        .find(|g| coarse * (g + 1) * (g + 1) <= VERTEX_BUDGET)
+        .unwrap_or(1)
 }
 
 /// The plan and evaluator of one option set.
