@@ -36,6 +36,15 @@ pub enum Command {
     Surface(SurfaceArgs),
     /// Refine built-in sample surfaces, write OBJ/PNG/JSON files, print a summary.
     Demo(DemoArgs),
+    /// Draw the surface as a PNG: plain shading, highlight lines, or Gaussian
+    /// or mean curvature maps computed per pixel from the exact patches.
+    Render(RenderArgs),
+    /// Draw the input under every scheme that applies, side by side, same
+    /// view and colour scale (PNG).
+    Compare(CompareArgs),
+    /// Print per ring level the extremes of Gaussian and mean curvature and
+    /// the limit values at the centre (JSON).
+    Curvature(CurvatureArgs),
 }
 
 /// Subdivision scheme.
@@ -58,6 +67,141 @@ impl Scheme {
             Scheme::Eg => "eg",
         }
     }
+}
+
+/// Scheme of `render`, `compare`, `curvature`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ShapeScheme {
+    /// C²PS (polar inputs; for meshes: the mesh pipeline's default, C²PS at
+    /// poles and EG at extraordinary points).
+    C2ps,
+    /// RTS (polar inputs).
+    Rts,
+    /// EG (c-nets and d-nets; for meshes the same as c2ps).
+    Eg,
+    /// Catmull-Clark caps everywhere (polar, c-net and mesh inputs).
+    CatmullClark,
+}
+
+impl ShapeScheme {
+    /// The name as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShapeScheme::C2ps => "c2ps",
+            ShapeScheme::Rts => "rts",
+            ShapeScheme::Eg => "eg",
+            ShapeScheme::CatmullClark => "catmull-clark",
+        }
+    }
+}
+
+/// Shading of `render` and `compare`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Shade {
+    /// Lambert shading of the exact normal, rings in alternating colours.
+    Plain,
+    /// Highlight lines (Beier & Chen 1994) from the exact normal.
+    Highlight,
+    /// Gaussian curvature colour map with a legend.
+    Gauss,
+    /// Mean curvature colour map with a legend.
+    Mean,
+}
+
+/// Picture options shared by `render` and `compare`.
+#[derive(Clone, Debug, Args)]
+pub struct PictureArgs {
+    /// Shading.
+    #[arg(long, value_enum, default_value_t = Shade::Plain)]
+    pub shade: Shade,
+    /// Rings per cap (C²PS levels 0..M, EG/Catmull-Clark steps 1..M).
+    #[arg(long, default_value_t = 5, value_name = "M",
+          value_parser = clap::value_parser!(u32).range(0..=12))]
+    pub depth: u32,
+    /// Camera: azimuth and elevation in degrees, `AZ,EL`.
+    #[arg(long, default_value = "-60,50", value_name = "AZ,EL",
+          value_parser = parse_view, allow_hyphen_values = true)]
+    pub view: (f64, f64),
+    /// Image size in pixels (per panel for `compare`), `WxH`.
+    #[arg(long, default_value = "640x480", value_name = "WxH", value_parser = parse_size)]
+    pub size: (usize, usize),
+    /// Tessellation segments per patch side (shading is per pixel anyway).
+    #[arg(long, default_value_t = 6, value_name = "G",
+          value_parser = clap::value_parser!(u32).range(1..=32))]
+    pub grid: u32,
+    /// The input: polar, cnet, dnet or mesh JSON, or a Wavefront OBJ mesh;
+    /// `-` for standard input.
+    #[arg(value_name = "FILE")]
+    pub file: String,
+    /// The PNG file to write.
+    #[arg(short, long, value_name = "PATH")]
+    pub output: PathBuf,
+}
+
+/// `capdiv render`.
+#[derive(Clone, Debug, Args)]
+pub struct RenderArgs {
+    /// Scheme [default: c2ps for polar inputs and meshes, eg for c-nets and
+    /// d-nets].
+    #[arg(long, value_enum)]
+    pub scheme: Option<ShapeScheme>,
+    /// Picture options.
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+/// `capdiv compare`.
+#[derive(Clone, Debug, Args)]
+pub struct CompareArgs {
+    /// Picture options.
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+/// `capdiv curvature`.
+#[derive(Clone, Debug, Args)]
+pub struct CurvatureArgs {
+    /// Scheme [default: c2ps for polar inputs and meshes, eg for c-nets and
+    /// d-nets].
+    #[arg(long, value_enum)]
+    pub scheme: Option<ShapeScheme>,
+    /// Deepest ring level M.
+    #[arg(long, default_value_t = 6, value_name = "M",
+          value_parser = clap::value_parser!(u32).range(0..=14))]
+    pub depth: u32,
+    /// Samples per patch side (the extremes are taken over `(S+1)²` samples
+    /// of every ring patch).
+    #[arg(long, default_value_t = 8, value_name = "S",
+          value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub samples: u32,
+    /// Pretty-print the JSON.
+    #[arg(long)]
+    pub pretty: bool,
+    /// Input and output.
+    #[command(flatten)]
+    pub io: Io,
+}
+
+fn parse_view(s: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("'{s}' is not AZIMUTH,ELEVATION in degrees (e.g. -60,50)");
+    let (a, e) = s.split_once(',').ok_or_else(bad)?;
+    let a: f64 = a.trim().parse().map_err(|_| bad())?;
+    let e: f64 = e.trim().parse().map_err(|_| bad())?;
+    if !a.is_finite() || !(-90.0..=90.0).contains(&e) {
+        return Err(bad());
+    }
+    Ok((a, e))
+}
+
+fn parse_size(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("'{s}' is not WIDTHxHEIGHT with sides 64..=4096 (e.g. 640x480)");
+    let (w, h) = s.split_once('x').ok_or_else(bad)?;
+    let w: usize = w.trim().parse().map_err(|_| bad())?;
+    let h: usize = h.trim().parse().map_err(|_| bad())?;
+    if !(64..=4096).contains(&w) || !(64..=4096).contains(&h) {
+        return Err(bad());
+    }
+    Ok((w, h))
 }
 
 /// Scalar type of the computation.

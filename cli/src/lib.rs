@@ -16,7 +16,11 @@
 //! - [`mesh`]: tessellation of Bézier patches into a quad mesh;
 //! - [`obj`]: the mesh as Wavefront OBJ text;
 //! - [`render`]: the mesh as a shaded PNG preview;
+//! - [`picture`]: shapes shaded per pixel from the exact patches (highlight
+//!   lines, curvature maps with legends), one panel per scheme;
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
+//! - [`shape`]: every input under every scheme as ring patches with levels
+//!   and hole edges (`render`, `compare`, `curvature`);
 //! - [`error`]: the one-line error type (every failure exits with status 2).
 
 pub mod args;
@@ -27,8 +31,10 @@ pub mod input;
 pub mod mesh;
 pub mod obj;
 pub mod output;
+pub mod picture;
 pub mod render;
 pub mod samples;
+pub mod shape;
 pub mod table;
 
 pub use error::CliError;

@@ -171,3 +171,39 @@ pub fn eg_samples() -> Vec<EgSample> {
         },
     ]
 }
+
+/// The papers' kinds of test nets (issue 8), built in code and read by
+/// `render`, `compare` and `curvature` as `sample:NAME`:
+///
+/// - `c2ps-convex-n20`: a convex polar configuration of valence 20 (as in
+///   C²PS Fig. 4), the paraboloid `z = (x² + y²)/2` sampled on 5 links of
+///   spacing 0.2 (analytic K = H = 1 at the pole, reproduced by C²PS);
+/// - `c2ps-saddle-n8`: the saddle `z = (x² − y²)/2`, valence 8, 5 links of
+///   spacing 0.25 (C²PS limit `1.5 (x² − y²)`: K = −2.25, H = 0);
+/// - `eg-convex-n3`, `eg-convex-n5`: c-nets of `z = (x² + y²)/2`, spacing
+///   0.5;
+/// - `eg-saddle-n3`, `eg-saddle-n5`: c-nets of `z = (x² − y²)/2` rotated so
+///   that no spoke is an axis of symmetry (`x, y` turned by 0.3 rad).
+pub fn shape_samples() -> Vec<(&'static str, crate::input::Input)> {
+    use crate::input::Input;
+    let convex = |x: f64, y: f64| 0.5 * (x * x + y * y);
+    let saddle = |x: f64, y: f64| {
+        let (s, c) = 0.3f64.sin_cos();
+        let (a, b) = (c * x - s * y, s * x + c * y);
+        0.5 * (a * a - b * b)
+    };
+    vec![
+        (
+            "c2ps-convex-n20",
+            Input::Polar(sample_surface(20, 5, 0.2, convex)),
+        ),
+        (
+            "c2ps-saddle-n8",
+            Input::Polar(sample_surface(8, 5, 0.25, |x, y| 0.5 * (x * x - y * y))),
+        ),
+        ("eg-convex-n3", Input::Cnet(sample_cnet(3, 0.5, convex))),
+        ("eg-convex-n5", Input::Cnet(sample_cnet(5, 0.5, convex))),
+        ("eg-saddle-n3", Input::Cnet(sample_cnet(3, 0.5, saddle))),
+        ("eg-saddle-n5", Input::Cnet(sample_cnet(5, 0.5, saddle))),
+    ]
+}

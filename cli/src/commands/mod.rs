@@ -7,12 +7,15 @@
 //! net (a valence and optionally a rule table); `surface` takes a whole mesh
 //! (`kind: "mesh"` JSON or Wavefront OBJ) through `capdiv_mesh`.
 
+pub mod compare;
+pub mod curvature;
 pub mod demo;
 pub mod eg;
 pub mod patches;
 pub mod polar;
 pub mod pole;
 pub mod refine;
+pub mod render;
 pub mod spectrum;
 pub mod surface;
 
@@ -64,5 +67,8 @@ pub fn run(command: Command) -> Result<Outcome, CliError> {
         Command::Spectrum(a) => spectrum::run(&a),
         Command::Surface(a) => surface::run(&a),
         Command::Demo(a) => demo::run(&a),
+        Command::Curvature(a) => curvature::run(&a),
+        Command::Render(a) => render::run(&a),
+        Command::Compare(a) => compare::run(&a),
     }
 }

@@ -1,0 +1,29 @@
+//! `capdiv compare`: the same input under every scheme that applies, side
+//! by side in one labelled PNG, same view (one fit for all panels) and, for
+//! curvature maps, one colour scale: polar — C²PS, RTS, Catmull-Clark;
+//! c-net — EG, Catmull-Clark; d-net — EG; mesh — the default pipeline
+//! (C²PS/EG), Catmull-Clark.
+
+use super::render::{camera, png_bytes};
+use super::Outcome;
+use crate::args::CompareArgs;
+use crate::error::CliError;
+use crate::output::Sink;
+use crate::picture::draw;
+use crate::shape::{build, read_any, schemes_for, Shape};
+
+/// Runs the command.
+pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
+    let (name, input) = read_any(&args.picture.file)?;
+    let shapes: Vec<Shape> = schemes_for(&input)
+        .into_iter()
+        .map(|s| build(&name, &input, Some(s), args.picture.depth))
+        .collect::<Result<_, _>>()?;
+    let refs: Vec<&Shape> = shapes.iter().collect();
+    let (cam, shading) = camera(&args.picture);
+    let pic = draw(&refs, &cam, shading, true);
+    Ok(Outcome::new(
+        png_bytes(&pic)?,
+        Sink::File(args.picture.output.clone()),
+    ))
+}

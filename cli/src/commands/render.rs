@@ -1,0 +1,49 @@
+//! `capdiv render`: one input under one scheme as a PNG, shaded per pixel
+//! from the exact patches ([`crate::picture`]): plain, highlight lines, or
+//! Gaussian / mean curvature with a legend. Inputs and schemes as
+//! [`crate::shape`]; the last hole is hatched.
+
+use super::Outcome;
+use crate::args::{PictureArgs, RenderArgs, Shade};
+use crate::error::CliError;
+use crate::output::Sink;
+use crate::picture::{draw, png, Camera, Shading};
+use crate::shape::{build, read_any};
+
+/// The picture options as the drawing's.
+pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
+    let cam = Camera {
+        width: p.size.0,
+        height: p.size.1,
+        azimuth: p.view.0,
+        elevation: p.view.1,
+        grid: p.grid as usize,
+    };
+    let shading = match p.shade {
+        Shade::Plain => Shading::Plain,
+        Shade::Highlight => Shading::Highlight,
+        Shade::Gauss => Shading::Gauss,
+        Shade::Mean => Shading::Mean,
+    };
+    (cam, shading)
+}
+
+/// PNG bytes, or the encoder's error.
+pub fn png_bytes(pic: &crate::picture::Picture) -> Result<Vec<u8>, CliError> {
+    png(pic).map_err(|e| CliError::Io {
+        path: "<png encoder>".into(),
+        message: e.to_string(),
+    })
+}
+
+/// Runs the command.
+pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
+    let (name, input) = read_any(&args.picture.file)?;
+    let shape = build(&name, &input, args.scheme, args.picture.depth)?;
+    let (cam, shading) = camera(&args.picture);
+    let pic = draw(&[&shape], &cam, shading, false);
+    Ok(Outcome::new(
+        png_bytes(&pic)?,
+        Sink::File(args.picture.output.clone()),
+    ))
+}

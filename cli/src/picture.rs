@@ -1,0 +1,490 @@
+//! Pictures of [`Shape`]s shaded per pixel from the exact patches (issue 8):
+//! `capdiv render` and `capdiv compare`.
+//!
+//! 1. Every patch is tessellated on a `grid × grid` parameter grid; each
+//!    vertex carries (patch index, `u`, `v`). Hole edges get a fan of
+//!    triangles to the cap's limit point, tagged as hole.
+//! 2. The triangles are rasterised (orthographic camera, z-buffer, 2×2
+//!    supersampling); a pixel keeps the patch index and the barycentric
+//!    interpolation of `(u, v)`.
+//! 3. Each covered pixel evaluates its patch's jet at `(u, v)`
+//!    ([`capdiv_mesh::tessellate::PatchGeometry::jet`]): the exact normal
+//!    for Lambert shading and highlight lines
+//!    ([`capdiv_mesh::shade::HighlightLines`]), the exact `K`, `H` for the
+//!    colour maps ([`capdiv_mesh::shade::diverging`], scale
+//!    [`capdiv_mesh::shade::symmetric_scale`] of the 98th percentile of
+//!    `|value|` over every panel, so `compare` panels share it). The
+//!    tessellation only decides which patch a pixel sees.
+//! 4. Hole pixels (the cap's unrefined centre) are hatched magenta/white;
+//!    curvature maps get a colour bar with its `−m`, `0`, `+m` values printed
+//!    (font: the `font8x8` crate).
+
+use crate::shape::{geometry_at, Shape};
+use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
+use font8x8::UnicodeFonts;
+
+/// What is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// Lambert, rings in alternating colours.
+    Plain,
+    /// Highlight lines.
+    Highlight,
+    /// Gaussian curvature map.
+    Gauss,
+    /// Mean curvature map.
+    Mean,
+}
+
+/// Camera and size of one panel.
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    /// Panel width in pixels.
+    pub width: usize,
+    /// Panel height in pixels.
+    pub height: usize,
+    /// Azimuth of the direction to the camera, degrees.
+    pub azimuth: f64,
+    /// Elevation, degrees.
+    pub elevation: f64,
+    /// Tessellation segments per patch side.
+    pub grid: usize,
+}
+
+/// Background colour.
+pub const BACKGROUND: [u8; 3] = [246, 246, 246];
+/// The two colours of the hole hatch.
+pub const HATCH: [[u8; 3]; 2] = [[200, 0, 160], [255, 255, 255]];
+/// Height of the legend strip under a curvature map, pixels.
+pub const LEGEND_HEIGHT: usize = 44;
+/// Height of the label strip above each panel, pixels.
+pub const LABEL_HEIGHT: usize = 20;
+
+const SS: usize = 2;
+const NO_PATCH: u32 = u32::MAX;
+const HOLE: u32 = u32::MAX - 1;
+
+type V3 = [f64; 3];
+
+fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+fn unit(a: V3) -> V3 {
+    let l = dot(a, a).sqrt();
+    if l > 0.0 && l.is_finite() {
+        a.map(|c| c / l)
+    } else {
+        [0.0, 0.0, 1.0]
+    }
+}
+
+/// A tessellation vertex: position, patch, parameters.
+#[derive(Clone, Copy, Debug)]
+struct Vert {
+    p: V3,
+    patch: u32,
+    uv: [f64; 2],
+}
+
+fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
+    let g = grid.max(1);
+    let mut tris = Vec::new();
+    for (k, sp) in shape.patches.iter().enumerate() {
+        let at = |a: usize, b: usize| {
+            let uv = [a as f64 / g as f64, b as f64 / g as f64];
+            let p = sp
+                .geometry
+                .jet(uv[0], uv[1])
+                .map(|j| j.position.0)
+                .unwrap_or([f64::NAN; 3]);
+            Vert {
+                p,
+                patch: k as u32,
+                uv,
+            }
+        };
+        let pts: Vec<Vec<Vert>> = (0..=g)
+            .map(|a| (0..=g).map(|b| at(a, b)).collect())
+            .collect();
+        for a in 0..g {
+            for b in 0..g {
+                let (p00, p10, p11, p01) =
+                    (pts[a][b], pts[a + 1][b], pts[a + 1][b + 1], pts[a][b + 1]);
+                tris.push([p00, p10, p11]);
+                tris.push([p00, p11, p01]);
+            }
+        }
+        // Hole fans: edge e's samples, then the limit point.
+        for e in 0..4u8 {
+            if sp.hole & (1 << e) == 0 {
+                continue;
+            }
+            let centre = Vert {
+                p: sp.hole_point,
+                patch: HOLE,
+                uv: [0.0; 2],
+            };
+            for c in 0..g {
+                let (a0, a1) = match e {
+                    0 => ((c, 0), (c + 1, 0)),
+                    1 => ((g, c), (g, c + 1)),
+                    2 => ((c, g), (c + 1, g)),
+                    _ => ((0, c), (0, c + 1)),
+                };
+                let mut x = pts[a0.0][a0.1];
+                let mut y = pts[a1.0][a1.1];
+                x.patch = HOLE;
+                y.patch = HOLE;
+                tris.push([x, y, centre]);
+            }
+        }
+    }
+    tris
+}
+
+/// The camera frame: `right`, `up`, `toward`.
+fn frame(cam: &Camera) -> (V3, V3, V3) {
+    let (az, el) = (cam.azimuth.to_radians(), cam.elevation.to_radians());
+    let toward = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
+    let right = {
+        let r = cross([0.0, 0.0, 1.0], toward);
+        if dot(r, r) < 1e-12 {
+            [1.0, 0.0, 0.0]
+        } else {
+            unit(r)
+        }
+    };
+    let up = cross(toward, right);
+    (right, up, toward)
+}
+
+/// What each supersample of a panel sees.
+struct Hits {
+    w: usize,
+    patch: Vec<u32>,
+    uv: Vec<[f64; 2]>,
+}
+
+/// Rasterises the shapes' tessellations into panels sharing one fit (the
+/// union of their screen extents).
+fn rasterise(shapes: &[&Shape], cam: &Camera) -> Vec<Hits> {
+    let (right, up, toward) = frame(cam);
+    let (w, h) = (cam.width * SS, cam.height * SS);
+    let tris: Vec<Vec<[Vert; 3]>> = shapes.iter().map(|s| tessellate(s, cam.grid)).collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for v in tris.iter().flatten().flatten() {
+        let s = [dot(v.p, right), dot(v.p, up)];
+        if s.iter().all(|c| c.is_finite()) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(s[k]);
+                hi[k] = hi[k].max(s[k]);
+            }
+        }
+    }
+    let margin = 0.04 * w.min(h) as f64;
+    let span = [(hi[0] - lo[0]).max(1e-300), (hi[1] - lo[1]).max(1e-300)];
+    let scale = ((w as f64 - 2.0 * margin) / span[0]).min((h as f64 - 2.0 * margin) / span[1]);
+    let off = [
+        0.5 * (w as f64 - scale * span[0]),
+        0.5 * (h as f64 - scale * span[1]),
+    ];
+    let screen = |p: V3| {
+        [
+            off[0] + (dot(p, right) - lo[0]) * scale,
+            h as f64 - (off[1] + (dot(p, up) - lo[1]) * scale),
+            dot(p, toward),
+        ]
+    };
+    tris.iter()
+        .map(|list| {
+            let mut depth = vec![f64::NEG_INFINITY; w * h];
+            let mut hits = Hits {
+                w,
+                patch: vec![NO_PATCH; w * h],
+                uv: vec![[0.0; 2]; w * h],
+            };
+            for t in list {
+                let s = t.map(|v| screen(v.p));
+                if s.iter().flatten().any(|c| !c.is_finite()) {
+                    continue;
+                }
+                let area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1])
+                    - (s[2][0] - s[0][0]) * (s[1][1] - s[0][1]);
+                if area.abs() < 1e-12 {
+                    continue;
+                }
+                // A little overlap (1/8 supersample) closes cracks between
+                // patches tessellated independently.
+                let eps = 0.125 / area.abs().sqrt().max(1.0);
+                let xs = s.map(|p| p[0]);
+                let ys = s.map(|p| p[1]);
+                let x0 = (xs.iter().cloned().fold(f64::INFINITY, f64::min) - 1.0).max(0.0) as usize;
+                let x1 =
+                    ((xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max) + 1.0) as usize).min(w);
+                let y0 = (ys.iter().cloned().fold(f64::INFINITY, f64::min) - 1.0).max(0.0) as usize;
+                let y1 =
+                    ((ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max) + 1.0) as usize).min(h);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
+                        let edge = |a: V3, b: V3| {
+                            (b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1])
+                        };
+                        let l = [
+                            edge(s[1], s[2]) / area,
+                            edge(s[2], s[0]) / area,
+                            edge(s[0], s[1]) / area,
+                        ];
+                        if l.iter().any(|&c| c < -eps) {
+                            continue;
+                        }
+                        let z = l[0] * s[0][2] + l[1] * s[1][2] + l[2] * s[2][2];
+                        let k = y * w + x;
+                        if z <= depth[k] {
+                            continue;
+                        }
+                        depth[k] = z;
+                        hits.patch[k] = t[0].patch;
+                        let uv = [
+                            l[0] * t[0].uv[0] + l[1] * t[1].uv[0] + l[2] * t[2].uv[0],
+                            l[0] * t[0].uv[1] + l[1] * t[1].uv[1] + l[2] * t[2].uv[1],
+                        ];
+                        hits.uv[k] = uv.map(|c| c.clamp(0.0, 1.0));
+                    }
+                }
+            }
+            hits
+        })
+        .collect()
+}
+
+/// An RGB image, rows top to bottom.
+#[derive(Clone, Debug)]
+pub struct Picture {
+    /// Width.
+    pub width: usize,
+    /// Height.
+    pub height: usize,
+    /// `3·width·height` bytes.
+    pub rgb: Vec<u8>,
+    /// The colour scale `m` of a curvature map (`[−m, m]`), if any.
+    pub scale: Option<f64>,
+}
+
+impl Picture {
+    fn new(width: usize, height: usize) -> Self {
+        Picture {
+            width,
+            height,
+            rgb: BACKGROUND.repeat(width * height),
+            scale: None,
+        }
+    }
+    fn put(&mut self, x: usize, y: usize, c: [u8; 3]) {
+        if x < self.width && y < self.height {
+            let k = 3 * (y * self.width + x);
+            self.rgb[k..k + 3].copy_from_slice(&c);
+        }
+    }
+    /// Text in the 8×8 font at `(x, y)` (top left), `size` pixels per font
+    /// pixel.
+    pub fn text(&mut self, x: usize, y: usize, s: &str, size: usize, c: [u8; 3]) {
+        for (i, ch) in s.chars().enumerate() {
+            let Some(glyph) = font8x8::BASIC_FONTS.get(ch) else {
+                continue;
+            };
+            for (row, bits) in glyph.iter().enumerate() {
+                for col in 0..8 {
+                    if bits & (1 << col) != 0 {
+                        for dy in 0..size {
+                            for dx in 0..size {
+                                self.put(x + (8 * i + col) * size + dx, y + row * size + dy, c);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Per-sample shading input.
+struct Sample {
+    point: V3,
+    normal: V3,
+    k: f64,
+    h: f64,
+    level: u32,
+}
+
+/// Draws `shapes` side by side, labelled when there are several (or
+/// `labels` is set), with one colour scale and one view.
+pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> Picture {
+    let hits = rasterise(shapes, cam);
+    let (_, _, toward) = frame(cam);
+    let (right, up, _) = frame(cam);
+    let light = unit([
+        toward[0] + 0.4 * right[0] + 0.6 * up[0],
+        toward[1] + 0.4 * right[1] + 0.6 * up[1],
+        toward[2] + 0.4 * right[2] + 0.6 * up[2],
+    ]);
+    // Geometry of every covered supersample.
+    let samples: Vec<Vec<Option<Sample>>> = hits
+        .iter()
+        .zip(shapes)
+        .map(|(hit, shape)| {
+            hit.patch
+                .iter()
+                .zip(&hit.uv)
+                .map(|(&p, uv)| {
+                    let sp = shape.patches.get(p as usize)?;
+                    let (point, normal, k, h) = geometry_at(&sp.geometry, uv[0], uv[1])?;
+                    Some(Sample {
+                        point,
+                        normal,
+                        k,
+                        h,
+                        level: sp.level,
+                    })
+                })
+                .collect()
+        })
+        .collect();
+    let value = |s: &Sample| match shading {
+        Shading::Gauss => s.k,
+        _ => s.h,
+    };
+    let scale = matches!(shading, Shading::Gauss | Shading::Mean).then(|| {
+        let all: Vec<f64> = samples.iter().flatten().flatten().map(value).collect();
+        symmetric_scale(&all, 0.98)
+    });
+    let lines = {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for s in samples.iter().flatten().flatten() {
+            for c in 0..3 {
+                lo[c] = lo[c].min(s.point[c]);
+                hi[c] = hi[c].max(s.point[c]);
+            }
+        }
+        HighlightLines::for_box(lo, hi, 10.0)
+    };
+    let top = if labels || shapes.len() > 1 {
+        LABEL_HEIGHT
+    } else {
+        0
+    };
+    let bottom = if scale.is_some() { LEGEND_HEIGHT } else { 0 };
+    let gap = 8;
+    let n = shapes.len().max(1);
+    let width = n * cam.width + (n - 1) * gap;
+    let mut pic = Picture::new(width, top + cam.height + bottom);
+    pic.scale = scale;
+    for (panel, (hit, samples)) in hits.iter().zip(&samples).enumerate() {
+        let x0 = panel * (cam.width + gap);
+        for y in 0..cam.height {
+            for x in 0..cam.width {
+                let mut acc = [0.0f64; 3];
+                for dy in 0..SS {
+                    for dx in 0..SS {
+                        let k = (y * SS + dy) * hit.w + x * SS + dx;
+                        let c: [f64; 3] = match (hit.patch[k], &samples[k]) {
+                            (NO_PATCH, _) => BACKGROUND.map(f64::from),
+                            (HOLE, _) => HATCH[((x + y) / 3) % 2].map(f64::from),
+                            (_, None) => [90.0, 90.0, 90.0],
+                            (_, Some(s)) => {
+                                let mut nrm = s.normal;
+                                if dot(nrm, toward) < 0.0 {
+                                    nrm = nrm.map(|c| -c);
+                                }
+                                let lambert = dot(nrm, light).max(0.0);
+                                match shading {
+                                    Shading::Plain => {
+                                        let base = if s.level % 2 == 0 {
+                                            [235.0, 150.0, 90.0]
+                                        } else {
+                                            [95.0, 155.0, 215.0]
+                                        };
+                                        base.map(|c| c * (0.25 + 0.75 * lambert))
+                                    }
+                                    Shading::Highlight => {
+                                        let i = lines
+                                            .map_or(0.0, |l| l.intensity(s.point, s.normal, 0.12));
+                                        let g = 120.0 + 125.0 * lambert;
+                                        [g * (1.0 - i), g * (1.0 - i), g * (1.0 - 0.6 * i)]
+                                    }
+                                    Shading::Gauss | Shading::Mean => {
+                                        let m = scale.unwrap_or(1.0);
+                                        diverging(value(s) / m)
+                                            .map(|c| f64::from(c) * (0.6 + 0.4 * lambert))
+                                    }
+                                }
+                            }
+                        };
+                        for d in 0..3 {
+                            acc[d] += c[d];
+                        }
+                    }
+                }
+                let c = acc.map(|c| (c / (SS * SS) as f64).round().clamp(0.0, 255.0) as u8);
+                pic.put(x0 + x, top + y, c);
+            }
+        }
+        if top > 0 {
+            let label = shapes[panel].label;
+            pic.text(x0 + 6, 4, label, 1, [20, 20, 20]);
+        }
+    }
+    if let Some(m) = scale {
+        legend(&mut pic, top + cam.height, m, shading);
+    }
+    pic
+}
+
+/// The colour bar under a curvature map: `−m … 0 … +m` with the numbers.
+fn legend(pic: &mut Picture, y0: usize, m: f64, shading: Shading) {
+    let (x0, x1) = (16usize, pic.width.saturating_sub(16).max(17));
+    let bar = 10;
+    for x in x0..x1 {
+        let t = 2.0 * (x - x0) as f64 / (x1 - 1 - x0) as f64 - 1.0;
+        let c = diverging(t);
+        for y in y0 + 6..y0 + 6 + bar {
+            pic.put(x, y, c);
+        }
+    }
+    let name = match shading {
+        Shading::Gauss => "K",
+        _ => "H",
+    };
+    let ty = y0 + 6 + bar + 4;
+    let ink = [20, 20, 20];
+    let lo = format!("{:.3e}", -m);
+    let hi = format!("{:.3e}", m);
+    pic.text(x0, ty, &lo, 1, ink);
+    let mid = (x0 + x1) / 2;
+    pic.text(mid.saturating_sub(4), ty, "0", 1, ink);
+    pic.text(x1.saturating_sub(8 * hi.len()), ty, &hi, 1, ink);
+    let title = format!("{name} (clamped beyond)");
+    pic.text(mid + 24, ty, &title, 1, ink);
+    // Tick marks at both ends and the middle.
+    for x in [x0, mid, x1 - 1] {
+        for y in y0 + 2..y0 + 6 {
+            pic.put(x, y, ink);
+        }
+    }
+}
+
+/// PNG bytes of a picture.
+pub fn png(pic: &Picture) -> Result<Vec<u8>, png::EncodingError> {
+    crate::render::encode_png(&crate::render::Image {
+        width: pic.width,
+        height: pic.height,
+        rgb: pic.rgb.clone(),
+    })
+}

@@ -1,0 +1,502 @@
+//! The surface a picture or a curvature table is made of (issue 8): every
+//! input kind under every scheme that applies, as one list of Bézier patches
+//! (f64) that know their ring level, which of their edges border the cap's
+//! last hole, and the cap's limit point.
+//!
+//! | input | scheme | patches |
+//! |---|---|---|
+//! | polar | `c2ps` (default) | `PolarNet::step` rings (spec C2PS.md §5), levels 0..M (those with 5 links), plus the level-0 outer region |
+//! | polar | `rts` | the same rings after `PolarNet::rts_step` (§3; valence kept) |
+//! | polar | `catmull-clark` | the configuration as a mesh (pole fan of triangles, quad rings between the links) through `capdiv_mesh` with `PlanOptions::catmull_clark`: two Catmull-Clark refinement steps, then a CC cap at the pole (and at the fan triangles' centres); only the faces between the pole and link 4 are kept, the region the C²PS rings cover |
+//! | cnet | `eg` (default) | `EgSubdivision` rings of steps 1..M (spec EG.md §9) |
+//! | cnet | `catmull-clark` | the kernel's `CcCap` on the same c-net, rings of steps 1..M (same layout) |
+//! | dnet | `eg` | as cnet |
+//! | mesh | default, `c2ps`, `eg` | `capdiv surface`'s pipeline (C²PS at poles, EG at n = 3, 5, CC elsewhere) |
+//! | mesh | `catmull-clark` | the same with `PlanOptions::catmull_clark` |
+//!
+//! Hole edges (the last ring's inner side): C²PS/RTS span-0 patches along
+//! `u = 0`; EG/CC piece 0 (`[½,1]×[0,½]`) along `u = 0`, piece 1 along
+//! `v = 0` (as `capdiv_mesh::evaluate` marks them).
+
+use crate::args::ShapeScheme;
+use crate::capacity::{dispatch, valence_after, NetJob};
+use crate::commands::eg::{cnet, subdivision};
+use crate::commands::polar::Config;
+use crate::error::CliError;
+use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
+use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
+use capdiv_mesh::tessellate::PatchGeometry;
+use capdiv_mesh::{
+    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
+    Topology,
+};
+
+/// One patch of a [`Shape`].
+#[derive(Clone, Debug)]
+pub struct ShapePatch {
+    /// The Bézier patch.
+    pub geometry: PatchGeometry<f64>,
+    /// Ring level (C²PS/RTS: the level of the ring, 0 for the outer region;
+    /// EG/CC: the step that emitted it; meshes: the patch's level).
+    pub level: u32,
+    /// Whether it is a ring patch of the cap the curvature table follows.
+    pub ring: bool,
+    /// Edges (bit 0: v=0, 1: u=1, 2: v=1, 3: u=0) bordering the last hole.
+    pub hole: u8,
+    /// The limit point the hole closes to.
+    pub hole_point: [f64; 3],
+}
+
+/// Limit curvature at the cap's centre, or why there is none.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Limit {
+    /// Gaussian and mean curvature at the centre.
+    Known {
+        /// `K`.
+        gaussian: f64,
+        /// `H`.
+        mean: f64,
+    },
+    /// Not defined by the scheme (the reason, for the stderr note).
+    Undefined(&'static str),
+}
+
+/// A surface to draw or measure.
+#[derive(Clone, Debug)]
+pub struct Shape {
+    /// The scheme's name (`c2ps`, `rts`, `eg`, `catmull-clark`, `mesh`).
+    pub scheme: &'static str,
+    /// A label for pictures (`C²PS` is drawn as `C2PS`).
+    pub label: &'static str,
+    /// The patches.
+    pub patches: Vec<ShapePatch>,
+    /// The limit curvature at the centre.
+    pub limit: Limit,
+}
+
+/// Why EG has no limit value here.
+pub const EG_NO_LIMIT: &str = "EG: the spec gives the limit point c0 (EG.md §4) but no \
+     limit curvature, and mu/lambda^2 = 1.00016 (n = 3, 5; EG.md §8) is not exactly 1, \
+     so curvature at the centre is only nearly settled";
+/// Why RTS has none.
+pub const RTS_NO_LIMIT: &str = "RTS: its rings' curvature does not settle to one value \
+     at the pole (min and max stay apart level after level, measured in the README), \
+     so the pole jet's K, H are not its limit";
+/// Why Catmull-Clark has none.
+pub const CC_NO_LIMIT: &str = "Catmull-Clark: mu/lambda^2 != 1 at extraordinary points, \
+     curvature at the centre is 0 or unbounded";
+/// Why a mesh has none.
+pub const MESH_NO_LIMIT: &str = "mesh: one limit value only for a mesh with a single C2PS cap";
+
+/// The schemes that apply to an input kind, default first.
+pub fn schemes_for(input: &Input) -> Vec<ShapeScheme> {
+    match input {
+        Input::Polar(_) => vec![
+            ShapeScheme::C2ps,
+            ShapeScheme::Rts,
+            ShapeScheme::CatmullClark,
+        ],
+        Input::Cnet(_) => vec![ShapeScheme::Eg, ShapeScheme::CatmullClark],
+        Input::Dnet(_) => vec![ShapeScheme::Eg],
+        Input::Mesh(_) => vec![ShapeScheme::C2ps, ShapeScheme::CatmullClark],
+    }
+}
+
+/// Builds the shape of `input` under `scheme` (default: the kind's own) with
+/// `depth` rings.
+pub fn build(
+    name: &str,
+    input: &Input,
+    scheme: Option<ShapeScheme>,
+    depth: u32,
+) -> Result<Shape, CliError> {
+    let scheme = scheme.unwrap_or(schemes_for(input)[0]);
+    let refuse = |need: &str| CliError::WrongKind {
+        source: name.to_string(),
+        kind: input.kind(),
+        need: format!("--scheme {} needs {need}", scheme.name()),
+    };
+    let shape = match (input, scheme) {
+        (Input::Polar(p), ShapeScheme::C2ps) => polar(name, p, depth, false)?,
+        (Input::Polar(p), ShapeScheme::Rts) => polar(name, p, depth, true)?,
+        (Input::Polar(p), ShapeScheme::CatmullClark) => polar_cc(name, p, depth)?,
+        (Input::Polar(_), ShapeScheme::Eg) => return Err(refuse("a 'cnet' or 'dnet' input")),
+        (Input::Cnet(c), ShapeScheme::Eg) => eg(name, &EgInput::Cnet(c.clone()), depth)?,
+        (Input::Dnet(d), ShapeScheme::Eg) => eg(name, &EgInput::Dnet(d.clone()), depth)?,
+        (Input::Cnet(c), ShapeScheme::CatmullClark) => cnet_cc(name, c, depth)?,
+        (Input::Dnet(_), ShapeScheme::CatmullClark) => {
+            return Err(refuse(
+                "a 'cnet', 'polar' or 'mesh' input (a d-net is not a Catmull-Clark net)",
+            ))
+        }
+        (Input::Cnet(_) | Input::Dnet(_), _) => return Err(refuse("a 'polar' input")),
+        (Input::Mesh(m), ShapeScheme::Rts) => {
+            let _ = m;
+            return Err(refuse("a 'polar' input"));
+        }
+        (Input::Mesh(m), s) => {
+            let mesh = m.to_mesh().map_err(|error| CliError::Mesh {
+                source: name.to_string(),
+                error,
+            })?;
+            let cc = s == ShapeScheme::CatmullClark;
+            let mut shape = mesh_shape(name, &mesh, depth, cc, None)?;
+            shape.label = if cc { "Catmull-Clark" } else { "C2PS / EG" };
+            shape
+        }
+    };
+    let finite = shape.patches.iter().all(|p| match &p.geometry {
+        PatchGeometry::Cubic(q) => q.points.iter().flatten().all(Point3::is_finite),
+        PatchGeometry::Quartic(q) => q.points.iter().flatten().all(Point3::is_finite),
+    });
+    if !finite {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    Ok(shape)
+}
+
+/// C²PS or RTS rings of a polar configuration.
+fn polar(name: &str, input: &PolarInput, depth: u32, rts: bool) -> Result<Shape, CliError> {
+    let config = Config::<f64>::of(input);
+    let n = config.valence();
+    let needed = if rts {
+        Some(n)
+    } else {
+        valence_after(n, depth)
+    };
+    dispatch(
+        needed,
+        || format!("valence n·2^M = {n}·2^{depth}"),
+        PolarJob {
+            name,
+            config: &config,
+            depth,
+            rts,
+        },
+    )
+}
+
+struct PolarJob<'a> {
+    name: &'a str,
+    config: &'a Config<f64>,
+    depth: u32,
+    rts: bool,
+}
+
+impl NetJob<f64> for PolarJob<'_> {
+    type Output = Shape;
+    fn run<const CAP: usize>(self) -> Result<Shape, CliError> {
+        let kernel = |e| CliError::kernel(self.name, e);
+        let (pole, links) = (self.config.pole, &self.config.links);
+        let mut net = Box::new(PolarNet::<f64, CAP>::new(pole, links).map_err(kernel)?);
+        let jet = PoleJet::try_of(&net).map_err(kernel)?;
+        let limit = match jet.geometry() {
+            Ok(g) => Limit::Known {
+                gaussian: g.gaussian,
+                mean: g.mean,
+            },
+            Err(_) => Limit::Undefined("the pole's tangent plane is degenerate (p1 x p2 = 0)"),
+        };
+        let hole_point = jet.limit().0;
+        let outer = OuterRegion::new(pole, links).map_err(kernel)?;
+        let mut patches: Vec<ShapePatch> = outer
+            .patches()
+            .map(|p| ShapePatch {
+                geometry: PatchGeometry::Cubic(p),
+                level: 0,
+                ring: false,
+                hole: 0,
+                hole_point,
+            })
+            .collect();
+        for level in 0..=self.depth {
+            if net.links_held() >= 5 {
+                let cols = net.valence();
+                for (k, p) in net.ring_patches().map_err(kernel)?.enumerate() {
+                    let last = level == self.depth && k < cols;
+                    patches.push(ShapePatch {
+                        geometry: PatchGeometry::Cubic(p),
+                        level,
+                        ring: true,
+                        hole: if last { 1 << 3 } else { 0 },
+                        hole_point,
+                    });
+                }
+            }
+            if level < self.depth {
+                if self.rts {
+                    net.try_rts_step().map_err(kernel)?;
+                } else {
+                    net.step(FirstStep::Uniform).map_err(kernel)?;
+                }
+            }
+        }
+        let limit = if self.rts {
+            Limit::Undefined(RTS_NO_LIMIT)
+        } else {
+            limit
+        };
+        Ok(Shape {
+            scheme: if self.rts { "rts" } else { "c2ps" },
+            label: if self.rts { "RTS" } else { "C2PS" },
+            patches,
+            limit,
+        })
+    }
+}
+
+/// EG/CC ring piece `k % 3`'s hole edges on the last ring.
+fn ring_hole(k: usize, last: bool) -> u8 {
+    match (last, k % 3) {
+        (true, 0) => 1 << 3,
+        (true, 1) => 1,
+        _ => 0,
+    }
+}
+
+/// EG rings of a c-net or d-net (built-in rules: n = 3, 4, 5).
+fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
+    let mut sub = subdivision::<f64>(name, input, None)?;
+    let kernel = |e| CliError::kernel(name, e);
+    let hole_point = sub.c0().0;
+    let mut patches = Vec::new();
+    for level in 1..=depth {
+        sub.step().map_err(kernel)?;
+        for (k, p) in sub.ring_patches().enumerate() {
+            patches.push(ShapePatch {
+                geometry: PatchGeometry::Quartic(p),
+                level,
+                ring: true,
+                hole: ring_hole(k, level == depth),
+                hole_point,
+            });
+        }
+    }
+    Ok(Shape {
+        scheme: "eg",
+        label: "EG",
+        patches,
+        limit: Limit::Undefined(EG_NO_LIMIT),
+    })
+}
+
+/// The kernel's Catmull-Clark cap on a c-net.
+fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError> {
+    let kernel = |e| CliError::kernel(name, e);
+    let net = cnet::<f64>(name, input)?;
+    let n = net.valence();
+    let nodes: Vec<[f64; 3]> = input.sectors.iter().flatten().copied().collect();
+    let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(n)];
+    let mut cap = CcCap::new(input.center, &nodes, &mut storage).map_err(kernel)?;
+    let hole_point = cap.try_limit().map_err(kernel)?.0;
+    let mut patches = Vec::new();
+    for level in 1..=depth {
+        cap.step().map_err(kernel)?;
+        for (k, p) in cap.ring_patches().enumerate() {
+            patches.push(ShapePatch {
+                geometry: PatchGeometry::Cubic(p),
+                level,
+                ring: true,
+                hole: ring_hole(k, level == depth),
+                hole_point,
+            });
+        }
+    }
+    Ok(Shape {
+        scheme: "catmull-clark",
+        label: "Catmull-Clark",
+        patches,
+        limit: Limit::Undefined(CC_NO_LIMIT),
+    })
+}
+
+/// A polar configuration as a mesh: vertex 0 the pole, link `i` column `j`
+/// vertex `1 + (i−1)n + j`; faces: the fan `(pole, l1[j], l1[j+1])` (faces
+/// `0..n`), then per pair of links `i, i+1` the quads
+/// `(li[j], li+1[j], li+1[j+1], li[j+1])` (faces `n·i .. n·(i+1)`).
+pub fn polar_mesh(input: &PolarInput) -> MeshInput {
+    let n = input.links.first().map_or(0, Vec::len);
+    let mut vertices = vec![input.pole];
+    for l in &input.links {
+        vertices.extend_from_slice(l);
+    }
+    let id = |i: usize, j: usize| (1 + i * n + j % n) as u32;
+    let mut faces = Vec::new();
+    for j in 0..n {
+        faces.push(vec![0, id(0, j), id(0, j + 1)]);
+    }
+    for i in 0..input.links.len().saturating_sub(1) {
+        for j in 0..n {
+            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    MeshInput::new(vertices, faces)
+}
+
+/// Catmull-Clark on a polar configuration: through the mesh pipeline.
+fn polar_cc(name: &str, input: &PolarInput, depth: u32) -> Result<Shape, CliError> {
+    let n = input.links.first().map_or(0, Vec::len);
+    if n < 3 || input.links.iter().any(|l| l.len() != n) || input.links.len() < 2 {
+        // The kernel's own message for a malformed configuration.
+        let config = Config::<f64>::of(input);
+        PolarNet::<f64, 4>::new(config.pole, &config.links)
+            .map_err(|e| CliError::kernel(name, e))?;
+    }
+    let mesh = polar_mesh(input);
+    // Faces between the pole and link 4 (the C²PS rings' region).
+    let keep = n * 4;
+    let mut shape = mesh_shape(name, &mesh, depth, true, Some(keep))?;
+    shape.scheme = "catmull-clark";
+    shape.label = "Catmull-Clark";
+    Ok(shape)
+}
+
+#[derive(Default)]
+struct Collect {
+    patches: Vec<PatchRecord<f64>>,
+    caps: Vec<CapRecord<f64>>,
+}
+
+impl SurfaceSink<f64> for Collect {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        self.patches.push(p.clone());
+    }
+    fn cap(&mut self, c: &CapRecord<f64>) {
+        self.caps.push(c.clone());
+    }
+}
+
+/// A mesh through `capdiv_mesh`; the curvature table follows the cap at
+/// input vertex 0 when it has one (a polar configuration's pole), else every
+/// cap. `keep`: only input faces below this index.
+fn mesh_shape(
+    name: &str,
+    mesh: &MeshInput,
+    depth: u32,
+    catmull_clark: bool,
+    keep: Option<usize>,
+) -> Result<Shape, CliError> {
+    let mesh_err = |error| CliError::Mesh {
+        source: name.to_string(),
+        error,
+    };
+    let topo = Topology::new(mesh).map_err(mesh_err)?;
+    let plan = SurfacePlan::new(
+        &topo,
+        PlanOptions {
+            depth,
+            catmull_clark,
+            ..Default::default()
+        },
+    )
+    .map_err(mesh_err)?;
+    let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::Eval {
+        source: name.to_string(),
+        error,
+    })?;
+    let mut out = Collect::default();
+    ev.evaluate(&plan, &mesh.vertices, &mut out)
+        .map_err(|error| CliError::Eval {
+            source: name.to_string(),
+            error,
+        })?;
+    let followed: Vec<u32> = match out.caps.iter().find(|c| c.vertex == Some(0)) {
+        Some(c) if keep.is_some() => vec![c.index],
+        _ => out.caps.iter().map(|c| c.index).collect(),
+    };
+    // A single C²PS cap: its pole curvature.
+    let limit = match out.caps.as_slice() {
+        [c] if c.scheme == Scheme::C2ps => match c.principal_curvatures {
+            Some([a, b]) => Limit::Known {
+                gaussian: a * b,
+                mean: 0.5 * (a + b),
+            },
+            None => Limit::Undefined(MESH_NO_LIMIT),
+        },
+        _ if catmull_clark => Limit::Undefined(CC_NO_LIMIT),
+        _ => Limit::Undefined(MESH_NO_LIMIT),
+    };
+    // Ring levels of cap patches counted from the cap's first ring.
+    let first_level = out
+        .patches
+        .iter()
+        .filter(|p| p.cap.is_some_and(|c| followed.contains(&c)))
+        .map(|p| p.level)
+        .min()
+        .unwrap_or(0);
+    let patches = out
+        .patches
+        .iter()
+        .filter(|p| keep.is_none_or(|k| (p.face as usize) < k))
+        .map(|p| {
+            let ring = p.cap.is_some_and(|c| followed.contains(&c));
+            ShapePatch {
+                geometry: p.geometry,
+                level: if ring {
+                    p.level - first_level + 1
+                } else {
+                    p.level
+                },
+                ring,
+                hole: p.hole,
+                hole_point: p.hole_point.0,
+            }
+        })
+        .collect();
+    Ok(Shape {
+        scheme: if catmull_clark {
+            "catmull-clark"
+        } else {
+            "mesh"
+        },
+        label: if catmull_clark {
+            "Catmull-Clark"
+        } else {
+            "C2PS / EG"
+        },
+        patches,
+        limit,
+    })
+}
+
+/// Reads any input: JSON of any kind (chosen by content), a Wavefront OBJ
+/// mesh, or `sample:NAME`, a built-in test net
+/// ([`crate::samples::shape_samples`]). Returns the display name with it.
+pub fn read_any(file: &str) -> Result<(String, Input), CliError> {
+    if let Some(name) = file.strip_prefix("sample:") {
+        let all = crate::samples::shape_samples();
+        let names: Vec<&str> = all.iter().map(|s| s.0).collect();
+        return match all.into_iter().find(|s| s.0 == name) {
+            Some((n, input)) => Ok((format!("sample:{n}"), input)),
+            None => Err(CliError::Usage(format!(
+                "no built-in sample '{name}' (samples: {})",
+                names.join(", ")
+            ))),
+        };
+    }
+    let source = crate::input::Source::read_text(file)?;
+    let input = if capdiv_mesh::obj::looks_like_json(&source.text) {
+        crate::input::parse(&source.name, &source.text)?
+    } else {
+        let mesh = capdiv_mesh::obj::parse_obj(&source.text).map_err(|error| CliError::Mesh {
+            source: source.name.clone(),
+            error,
+        })?;
+        Input::Mesh(MeshJson::of(&mesh))
+    };
+    Ok((source.name, input))
+}
+
+/// Geometry at `(u, v)` of a patch: position, unit normal, `K`, `H`
+/// (`None` where the tangent plane degenerates).
+pub fn geometry_at(
+    p: &PatchGeometry<f64>,
+    u: f64,
+    v: f64,
+) -> Option<([f64; 3], [f64; 3], f64, f64)> {
+    let jet = p.jet(u.clamp(0.0, 1.0), v.clamp(0.0, 1.0)).ok()?;
+    let g = jet.geometry().ok()?;
+    Some((jet.position.0, g.normal.0, g.gaussian, g.mean))
+}
