@@ -360,6 +360,12 @@ fn errors_come_before_any_patch() {
         run(&mut state, pole, &odd, 1),
         Err(Error::ValenceUnsupported { valence: 131 })
     );
+    assert_eq!(
+        state
+            .sweep(pole, &links, StreamOptions::depth(2).only(1, Some(2)))
+            .err(),
+        Some(Error::OutOfDomain)
+    );
     let mut huge = links.clone();
     huge[4][0][0] = f64::MAX / 64.0;
     assert_eq!(run(&mut state, pole, &huge, 2), Err(Error::NonFinite));

@@ -147,6 +147,7 @@ impl<R: Real, const D: usize> PolarStream<R, D> {
     /// Every check runs here, before any patch: [`Error::TooFewLinks`],
     /// [`Error::ValenceTooSmall`], [`Error::LinkLengthMismatch`],
     /// [`Error::NonFinite`] (as [`PolarNet::new`]); then
+    /// [`Error::OutOfDomain`] for a span other than 0 or 1 in the options,
     /// [`Error::CapacityExceeded`] `{ needed: depth, capacity: D }` for a
     /// depth above `D`, [`Error::ValenceUnsupported`] (odd part of `n` above
     /// [`crate::trig::MAX_ODD_PART`]), [`Error::CapacityExceeded`]
@@ -168,6 +169,9 @@ impl<R: Real, const D: usize> PolarStream<R, D> {
         options: StreamOptions,
     ) -> Result<Sweep<'a, R, L, D>, Error> {
         let n = validate(&pole, links)?;
+        if options.span.is_some_and(|s| s > 1) {
+            return Err(Error::OutOfDomain);
+        }
         let depth = options.depth;
         if depth as usize > D || depth > 63 {
             return Err(Error::CapacityExceeded {
