@@ -22,7 +22,7 @@ use sample::{LINKS, POLE, VALENCE};
 /// Depth streamed by the firmware (`firmware/src/stream.rs`).
 const DEPTH: u32 = 12;
 
-/// The run takes ~7 s of CPU under QEMU (soft-float f32 on the M0, 98,280
+/// The run takes ~7 s of CPU under QEMU (soft-float f32 on the M0, 98,292
 /// patches); the limit allows for a heavily shared machine.
 const LIMIT: Duration = Duration::from_secs(300);
 
