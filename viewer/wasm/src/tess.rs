@@ -74,8 +74,7 @@ impl Surface {
     fn push(&mut self, p: [f64; 3], n: [f64; 3], k: f64, h: f64, flags: u8) -> u32 {
         let i = self.position.len() as u32;
         for (c, &x) in p.iter().enumerate() {
-            self.lo[c] = self.lo[c].min(x);
-            self.hi[c] = self.hi[c].max(x);
+            widen(&mut self.lo, &mut self.hi, c, x);
         }
         self.position.push(p);
         self.normal.push(n);
@@ -88,8 +87,7 @@ impl Surface {
     /// Sets vertex `i`.
     fn set(&mut self, i: usize, p: [f64; 3], n: [f64; 3], k: f64, h: f64, flags: u8) {
         for (c, &x) in p.iter().enumerate() {
-            self.lo[c] = self.lo[c].min(x);
-            self.hi[c] = self.hi[c].max(x);
+            widen(&mut self.lo, &mut self.hi, c, x);
         }
         self.position[i] = p;
         self.normal[i] = n;
@@ -143,10 +141,21 @@ impl Surface {
         self.hi = [f64::NEG_INFINITY; 3];
         for p in &self.position {
             for (c, &x) in p.iter().enumerate() {
-                self.lo[c] = self.lo[c].min(x);
-                self.hi[c] = self.hi[c].max(x);
+                widen(&mut self.lo, &mut self.hi, c, x);
             }
         }
+    }
+}
+
+/// Widens the box `[lo, hi]` along `c` to hold `x` (plain comparisons:
+/// `f64::min` is a libm call on wasm32).
+#[inline]
+fn widen(lo: &mut [f64; 3], hi: &mut [f64; 3], c: usize, x: f64) {
+    if x < lo[c] {
+        lo[c] = x;
+    }
+    if x > hi[c] {
+        hi[c] = x;
     }
 }
 
