@@ -111,7 +111,8 @@ function updateStatus() {
   const caps = s.caps.map((c) => `${c.count}× ${c.scheme} n=${c.valence}`).join(', ') || 'none';
   const uncovered = s.uncovered_faces ? ` · ${s.uncovered_faces} faces uncovered` : '';
   const refined = s.refinement_steps ? ` · refined ${s.refinement_steps}×` : '';
-  ui.status.textContent = `${s.name}: ${s.vertices} control points, ${s.faces} faces${refined}${uncovered} · patches: ${kinds} · caps: ${caps} · ${s.surface_vertices} samples (grid ${s.grid})`;
+  const name = state.source.kind === 'text' ? state.source.name : s.name;
+  ui.status.textContent = `${name}: ${s.vertices} control points, ${s.faces} faces${refined}${uncovered} · patches: ${kinds} · caps: ${caps} · ${s.surface_vertices} samples (grid ${s.grid})`;
   const shading = ui.shading.value;
   const curvature = shading === 'gaussian' || shading === 'mean';
   ui.legend.hidden = !curvature;
@@ -203,6 +204,8 @@ ui.canvas.addEventListener('pointerdown', (ev) => {
     const p = controlPoint(i);
     state.drag = { kind: 'point', i, start: p, x, y, size: state.camera.pixelSize(p, r.height), axes: state.camera.axes() };
     state.renderer.selected = i;
+  } else if (ev.shiftKey || ev.button === 2) {
+    state.drag = { kind: 'pan', x, y, target: state.camera.target.slice(), size: state.camera.pixelSize(state.camera.target, r.height), axes: state.camera.axes() };
   } else {
     state.drag = { kind: 'orbit', x, y, yaw: state.camera.yaw, pitch: state.camera.pitch };
   }
@@ -218,6 +221,9 @@ ui.canvas.addEventListener('pointermove', (ev) => {
   if (d.kind === 'orbit') {
     state.camera.yaw = d.yaw - dx * 0.01;
     state.camera.pitch = Math.max(-1.5, Math.min(1.5, d.pitch + dy * 0.01));
+  } else if (d.kind === 'pan') {
+    const { right, up } = d.axes;
+    state.camera.target = [0, 1, 2].map((k) => d.target[k] - d.size * (dx * right[k] - dy * up[k]));
   } else {
     const { right, up } = d.axes;
     const p = [0, 1, 2].map((k) => d.start[k] + d.size * (dx * right[k] - dy * up[k]));
@@ -239,6 +245,7 @@ function endDrag() {
   }
 }
 ui.canvas.addEventListener('pointerup', endDrag);
+ui.canvas.addEventListener('contextmenu', (ev) => ev.preventDefault());
 ui.canvas.addEventListener('pointercancel', endDrag);
 
 ui.canvas.addEventListener('wheel', (ev) => {

@@ -146,7 +146,7 @@ test('the viewer in headless chromium', async (t) => {
       for (let i = 0; i < n; i++) for (let j = 0; j < m; j++) torus.push(`f ${id(i, j)} ${id(i + 1, j)} ${id(i + 1, j + 1)} ${id(i, j + 1)}`);
       await dropFile(page, 'torus.obj', torus.join('\n'));
       await page.waitForFunction(() => document.getElementById('message').textContent === 'torus.obj loaded');
-      assert.match(await page.textContent('#status'), /file: 48 control points, 48 faces/);
+      assert.match(await page.textContent('#status'), /^torus\.obj: 48 control points, 48 faces/);
       assert.ok((await pixels(page)).surface > 0.03 * before.width * before.height);
       assert.deepEqual(errors, []);
       await page.selectOption('#sample', { label: 'mushroom' });
@@ -210,6 +210,32 @@ test('the viewer in headless chromium', async (t) => {
       await nextFrame(page);
       assert.match(await page.textContent('#status'), /caps: 2× c2ps n=12/);
       await page.selectOption('#shading', 'plain');
+      assert.deepEqual(errors, []);
+    });
+
+    await t.test('dragging the background orbits, the wheel zooms', async () => {
+      await setNet(page, false);
+      const box = await page.locator('#view').boundingBox();
+      const a = await pixels(page);
+      await page.mouse.move(box.x + 20, box.y + 20);
+      await page.mouse.down();
+      await page.mouse.move(box.x + 140, box.y + 50, { steps: 5 });
+      await page.mouse.up();
+      const b = await pixels(page);
+      assert.ok((await changed(page, a, b)) > 0.01, 'orbit');
+      await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await page.mouse.wheel(0, 400);
+      const c = await pixels(page);
+      assert.ok((await changed(page, b, c)) > 0.01, 'zoom');
+      // Zoomed out: the surface covers less of the view.
+      assert.ok(c.surface < b.surface, `${c.surface} < ${b.surface}`);
+      // And back to the first view.
+      await page.mouse.wheel(0, -400);
+      await page.mouse.move(box.x + 140, box.y + 50);
+      await page.mouse.down();
+      await page.mouse.move(box.x + 20, box.y + 20, { steps: 5 });
+      await page.mouse.up();
+      assert.ok((await changed(page, a, await pixels(page))) < 0.001, 'the same view again');
       assert.deepEqual(errors, []);
     });
 
