@@ -1,7 +1,7 @@
 //! Streaming C²PS on the Cortex-M0 (issue 9): the firmware's `c2ps-stream`
 //! build (QEMU `microbit`, 16 KiB RAM) streams the valence-6 sample to depth
 //! 12 with the kernel's `PolarStream<f32, 12>` and logs, per level, the patch
-//! count, the mean control point and an order-sensitive weighted mean corner
+//! count and an order-sensitive weighted mean of all control points
 //! (`firmware/src/stream.rs`), plus the pole jet. Here every number is
 //! recomputed from the `f64` **in-place** kernel (`PolarNetBuf`, whole levels,
 //! 3.3 MB at depth 12) — a different code path from the streamed one — and
@@ -71,24 +71,19 @@ fn reference() -> BTreeMap<String, Entry> {
     }
     for m in 0..=DEPTH {
         let n = net.valence();
-        let mut points = Point3::ZERO;
         let mut weighted = Point3::ZERO;
         let mut count = 0usize;
         for (i, patch) in net.ring_patches().unwrap().enumerate() {
             let column = i % n;
+            let mut s = Point3::ZERO;
             for q in patch.points.iter().flatten() {
-                points += *q;
+                s += *q;
             }
-            weighted += patch.points[0][0] * ((column as f64 + 0.5) / n as f64);
+            weighted += s * ((column as f64 + 0.5) / n as f64 / 16.0);
             count += 1;
         }
         let c = count as f64;
         add("scount", &[m as usize, count], vec![]);
-        add(
-            "smean",
-            &[m as usize],
-            (points * (1.0 / (16.0 * c))).0.to_vec(),
-        );
         add("sweight", &[m as usize], (weighted * (1.0 / c)).0.to_vec());
         if m < DEPTH {
             net.step(FirstStep::Uniform).unwrap();
