@@ -315,29 +315,30 @@ impl Picture {
     }
 }
 
-/// Per-sample shading input.
-struct Sample {
-    point: V3,
-    normal: V3,
-    k: f64,
-    h: f64,
-    level: u32,
+/// The exact geometry one supersample sees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Surface point.
+    pub point: V3,
+    /// Unit normal `∂u × ∂v` normalised.
+    pub normal: V3,
+    /// Gaussian curvature.
+    pub k: f64,
+    /// Mean curvature.
+    pub h: f64,
+    /// Ring level of its patch.
+    pub level: u32,
 }
 
-/// Draws `shapes` side by side, labelled when there are several (or
-/// `labels` is set), with one colour scale and one view.
-pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> Picture {
-    let hits = rasterise(shapes, cam);
-    let (_, _, toward) = frame(cam);
-    let (right, up, _) = frame(cam);
-    let light = unit([
-        toward[0] + 0.4 * right[0] + 0.6 * up[0],
-        toward[1] + 0.4 * right[1] + 0.6 * up[1],
-        toward[2] + 0.4 * right[2] + 0.6 * up[2],
-    ]);
-    // Geometry of every covered supersample.
-    let samples: Vec<Vec<Option<Sample>>> = hits
-        .iter()
+/// What every supersample of every panel sees: per panel, row-major
+/// `(2·width) × (2·height)` entries, `None` for background, hole pixels and
+/// degenerate points — the numbers the pictures are made of.
+pub fn probe(shapes: &[&Shape], cam: &Camera) -> Vec<Vec<Option<Sample>>> {
+    samples_of(shapes, &rasterise(shapes, cam))
+}
+
+fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Vec<Vec<Option<Sample>>> {
+    hits.iter()
         .zip(shapes)
         .map(|(hit, shape)| {
             hit.patch
@@ -356,7 +357,33 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
                 })
                 .collect()
         })
-        .collect();
+        .collect()
+}
+
+/// The highlight lines a picture of these samples uses: about 10 lines
+/// across their bounding box ([`HighlightLines::for_box`]).
+pub fn highlight_lines(samples: &[Vec<Option<Sample>>]) -> Option<HighlightLines> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for s in samples.iter().flatten().flatten() {
+        for c in 0..3 {
+            lo[c] = lo[c].min(s.point[c]);
+            hi[c] = hi[c].max(s.point[c]);
+        }
+    }
+    HighlightLines::for_box(lo, hi, 10.0)
+}
+
+/// Draws `shapes` side by side, labelled when there are several (or
+/// `labels` is set), with one colour scale and one view.
+pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> Picture {
+    let hits = rasterise(shapes, cam);
+    let (right, up, toward) = frame(cam);
+    let light = unit([
+        toward[0] + 0.4 * right[0] + 0.6 * up[0],
+        toward[1] + 0.4 * right[1] + 0.6 * up[1],
+        toward[2] + 0.4 * right[2] + 0.6 * up[2],
+    ]);
+    let samples = samples_of(shapes, &hits);
     let value = |s: &Sample| match shading {
         Shading::Gauss => s.k,
         _ => s.h,
@@ -365,16 +392,7 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
         let all: Vec<f64> = samples.iter().flatten().flatten().map(value).collect();
         symmetric_scale(&all, 0.98)
     });
-    let lines = {
-        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for s in samples.iter().flatten().flatten() {
-            for c in 0..3 {
-                lo[c] = lo[c].min(s.point[c]);
-                hi[c] = hi[c].max(s.point[c]);
-            }
-        }
-        HighlightLines::for_box(lo, hi, 10.0)
-    };
+    let lines = highlight_lines(&samples);
     let top = if labels || shapes.len() > 1 {
         LABEL_HEIGHT
     } else {
