@@ -23,6 +23,7 @@ use common::capdiv;
 /// evenly spaced: gaps within 1 % of each other (measured 0.3 %; the row is sampled at
 /// pixel centres; measured spread printed), at least 4 of them.
 #[test]
+#[allow(clippy::needless_range_loop)] // Gauss-Jordan on a 3x4 array
 fn highlight_stripes_of_a_plane_are_straight_and_evenly_spaced() {
     let plane = |x: f64, y: f64| 0.3 * x - 0.2 * y + 0.1;
     let want = {
@@ -269,9 +270,9 @@ fn render_draws_every_input_kind() {
     }
 }
 
-/// `compare`: one panel per applicable scheme (polar: 3, c-net: 2, d-net:
-/// 1) of the requested size, 8-pixel gaps, a label strip with text over
-/// each panel, one legend for all.
+/// `compare`: one panel per applicable scheme (3 for a polar net, 2 for a
+/// c-net) of the requested size, 8-pixel gaps, a label strip with text
+/// over each panel, one legend for all.
 #[test]
 fn compare_draws_one_labelled_panel_per_scheme() {
     let dir = tempfile::tempdir().unwrap();
