@@ -440,6 +440,48 @@ mod tests {
         }
     }
 
+    /// The samples welded by position (tolerance 1e-9 of the box) and the
+    /// triangles on the welded vertices, degenerate ones dropped.
+    fn welded(sc: &Scene) -> Vec<capdiv_mesh::tessellate::Face> {
+        use capdiv::Point3;
+        use capdiv_mesh::tessellate::{weld::representatives, Face};
+        let s = sc.surface();
+        let size = (0..3).map(|c| s.hi[c] - s.lo[c]).fold(0.0, f64::max);
+        let points: Vec<Point3<f64>> = s.position.iter().map(|&p| Point3(p)).collect();
+        let rep = representatives(&points, 1e-9 * size);
+        s.indices
+            .chunks(3)
+            .map(|t| [rep[t[0] as usize], rep[t[1] as usize], rep[t[2] as usize]])
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+            .map(Face::Tri)
+            .collect()
+    }
+
+    #[test]
+    fn closed_samples_give_closed_oriented_triangles_at_every_grid() {
+        use capdiv_mesh::tessellate::is_closed_and_oriented;
+        let mut cases: Vec<(&str, usize, bool)> = Vec::new();
+        for name in ["mushroom", "globe", "rounded-cube", "cube", "torus"] {
+            cases.extend([(name, 1, false), (name, 8, false), (name, 1, true)]);
+        }
+        cases.extend([("hand", 2, false), ("hand", 1, true)]);
+        for (name, grid, catmull_clark) in cases {
+            let s = crate::samples::by_name(name).unwrap();
+            let o = Options {
+                depth: 3,
+                grid,
+                catmull_clark,
+            };
+            let sc = Scene::new(name, (s.build)(), o, Mode::Plain).unwrap();
+            let faces = welded(&sc);
+            assert!(
+                is_closed_and_oriented(&faces).is_ok(),
+                "{name} grid {grid} cc {catmull_clark}: {:?}",
+                is_closed_and_oriented(&faces)
+            );
+        }
+    }
+
     #[test]
     fn bad_edits_and_options_leave_the_scene_as_it_was() {
         let mut sc = scene("rounded-cube", 2);

@@ -11,8 +11,9 @@
 //! edges). A patch `k` levels finer than the surface's coarsest patches gets
 //! `g >> k` segments (at least 1), so across a ring of a cap, where one patch
 //! meets two of half its size, the coarse patch's edge samples are exactly
-//! the fine patches' ones: no crack while `g >> k ≥ 1`. Deeper rings (patches
-//! under 1/g of a face) have one segment and may leave a hairline T-junction.
+//! the fine patches' ones. Patches of one segment (rings under `1/g` of a face)
+//! whose edge meets two half-size patches get that edge's midpoint and a fan
+//! from their centre: no crack either.
 //!
 //! The cap's last hole (edges flagged in [`PatchRecord::hole`]) is closed by
 //! a fan of triangles to the cap's limit point; those triangles' vertices are
@@ -175,6 +176,7 @@ pub fn segments(grid: usize, base: u32, level: u32) -> usize {
 struct Slot {
     geometry: PatchGeometry<f64>,
     level: u32,
+    finer: u8,
     hole: u8,
     hole_point: [f64; 3],
     /// First vertex, and one past its last (hole fans included).
@@ -255,16 +257,45 @@ impl Tessellator {
             }
         }
         let at = |a: u32, b: u32| first + a * side + b;
-        for a in 0..g as u32 {
-            for b in 0..g as u32 {
-                self.surface.indices.extend_from_slice(&[
-                    at(a, b),
-                    at(a + 1, b),
-                    at(a + 1, b + 1),
-                    at(a, b),
-                    at(a + 1, b + 1),
-                    at(a, b + 1),
-                ]);
+        let extra = extra_samples(g, p.finer);
+        if extra.is_empty() {
+            for a in 0..g as u32 {
+                for b in 0..g as u32 {
+                    self.surface.indices.extend_from_slice(&[
+                        at(a, b),
+                        at(a + 1, b),
+                        at(a + 1, b + 1),
+                        at(a, b),
+                        at(a + 1, b + 1),
+                        at(a, b + 1),
+                    ]);
+                }
+            }
+        } else {
+            // One cell with midpoints on its finer edges: a fan from the
+            // centre over its boundary, counter-clockwise.
+            let base = self.surface.len() as u32;
+            for &(u, v) in &extra {
+                self.surface.sample(&p.geometry, u, v);
+            }
+            let centre = base + extra.len() as u32 - 1;
+            let mut ring = Vec::with_capacity(8);
+            let mut mid = base;
+            for (e, corner) in [at(0, 0), at(1, 0), at(1, 1), at(0, 1)]
+                .into_iter()
+                .enumerate()
+            {
+                ring.push(corner);
+                if p.finer & (1 << e) != 0 {
+                    ring.push(mid);
+                    mid += 1;
+                }
+            }
+            for k in 0..ring.len() {
+                let next = ring[(k + 1) % ring.len()];
+                self.surface
+                    .indices
+                    .extend_from_slice(&[ring[k], next, centre]);
             }
         }
         if p.hole != 0 {
@@ -279,6 +310,7 @@ impl Tessellator {
         self.slots.push(Slot {
             geometry: p.geometry,
             level: p.level,
+            finer: p.finer,
             hole: p.hole,
             hole_point: p.hole_point.0,
             first,
@@ -298,6 +330,10 @@ impl Tessellator {
                 s.resample(i, &p.geometry, a as f64 / g as f64, b as f64 / g as f64);
                 i += 1;
             }
+        }
+        for (u, v) in extra_samples(g, p.finer) {
+            s.resample(i, &p.geometry, u, v);
+            i += 1;
         }
         if p.hole != 0 {
             // The fans' vertices follow the grid: per hole edge, copies of
@@ -329,7 +365,7 @@ impl SurfaceSink<f64> for Tessellator {
             self.push_patch(p);
         } else if !self.mismatch {
             match self.slots.get(self.cursor) {
-                Some(s) if s.level == p.level && s.hole == p.hole => {
+                Some(s) if s.level == p.level && s.finer == p.finer && s.hole == p.hole => {
                     if s.geometry != p.geometry || s.hole_point != p.hole_point.0 {
                         self.update_patch(self.cursor, p);
                     }
@@ -343,6 +379,25 @@ impl SurfaceSink<f64> for Tessellator {
     fn cap(&mut self, c: &CapRecord<f64>) {
         self.caps.push(c.clone());
     }
+}
+
+/// Samples beyond the grid: a patch of one segment whose edge `e` is met
+/// by two patches of half its size (bit `e` of `finer`) gets that edge's
+/// midpoint — where the two meet — and then its centre, so that it can be
+/// triangulated without a T-junction. (With `g ≥ 2` segments the
+/// neighbours' samples are already among the patch's, `g/2` each.)
+fn extra_samples(g: usize, finer: u8) -> Vec<(f64, f64)> {
+    if g != 1 || finer == 0 {
+        return Vec::new();
+    }
+    let mut out: Vec<(f64, f64)> = [(0.5, 0.0), (1.0, 0.5), (0.5, 1.0), (0.0, 0.5)]
+        .into_iter()
+        .enumerate()
+        .filter(|(e, _)| finer & (1 << e) != 0)
+        .map(|(_, uv)| uv)
+        .collect();
+    out.push((0.5, 0.5));
+    out
 }
 
 /// Grid coordinates `(a, b)` of edge `e`'s samples, in the patch's
@@ -494,6 +549,34 @@ mod tests {
         for f in fine {
             assert!(coarse.contains(&f));
         }
+    }
+
+    #[test]
+    fn one_segment_patches_take_the_midpoints_of_finer_edges() {
+        let mut r = record(3, 0);
+        r.finer = 0b0011; // edges v = 0 and u = 1
+        let mut s = Surface::default();
+        tessellate(&[r], 0, 8, &mut s);
+        // 4 corners, 2 midpoints, the centre; a fan of 6 triangles.
+        assert_eq!(s.len(), 7);
+        // z = x² + y² at (½, 0), (1, ½), (½, ½), to rounding.
+        let near = |p: [f64; 3], q: [f64; 3]| (0..3).all(|c| (p[c] - q[c]).abs() < 1e-15);
+        assert!(near(s.position[4], [0.5, 0.0, 0.25]));
+        assert!(near(s.position[5], [1.0, 0.5, 1.25]));
+        assert!(near(s.position[6], [0.5, 0.5, 0.5]));
+        assert_eq!(s.indices.len(), 6 * 3);
+        for tri in s.indices.chunks(3) {
+            assert_eq!(tri[2], 6);
+            let p: Vec<[f64; 3]> = tri.iter().map(|&i| s.position[i as usize]).collect();
+            let area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
+                - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
+            assert!(area > 0.0, "{p:?}");
+        }
+        // With two or more segments the grid already has them.
+        let mut r = record(2, 0);
+        r.finer = 0b0011;
+        tessellate(&[r], 0, 8, &mut s);
+        assert_eq!(s.len(), 9);
     }
 
     #[test]
