@@ -461,6 +461,19 @@ fn mesh_shape(
     })
 }
 
+/// [`CliError::Usage`] when a shape has no patch to draw (e.g. a polar net
+/// of 2 links at depth 0 or 1: its first ring needs 5 links, level 2).
+pub fn drawable(name: &str, shape: &Shape, depth: u32) -> Result<(), CliError> {
+    if shape.patches.is_empty() {
+        return Err(CliError::Usage(format!(
+            "{name}: no patch to draw under {} at depth {depth} (a C2PS ring needs 5 links: \
+             with 2 input links rings start at level 2, with 3 or 4 at level 1)",
+            shape.scheme
+        )));
+    }
+    Ok(())
+}
+
 /// Reads any input: JSON of any kind (chosen by content), a Wavefront OBJ
 /// mesh, or `sample:NAME`, a built-in test net
 /// ([`crate::samples::shape_samples`]). Returns the display name with it.

@@ -332,6 +332,22 @@ fn render_and_compare_refuse_bad_options_and_input() {
         std::fs::write(&p, run.stdout).unwrap();
         p.to_str().unwrap().to_string()
     };
+    let two_links = {
+        let p = dir.path().join("two.json");
+        let links: Vec<Vec<[f64; 3]>> = (1..=2)
+            .map(|i| {
+                (0..5)
+                    .map(|j| {
+                        let t = std::f64::consts::TAU * j as f64 / 5.0;
+                        [i as f64 * t.cos(), i as f64 * t.sin(), 0.0]
+                    })
+                    .collect()
+            })
+            .collect();
+        let v = serde_json::json!({"kind": "polar", "pole": [0.0, 0.0, 0.0], "links": links});
+        std::fs::write(&p, v.to_string()).unwrap();
+        p.to_str().unwrap().to_string()
+    };
     for (args, want) in [
         (
             vec!["render", "--shade", "shiny", "sample:eg-convex-n3", "-o", o],
@@ -361,6 +377,10 @@ fn render_and_compare_refuse_bad_options_and_input() {
         (
             vec!["compare", "sample:none", "-o", o],
             "no built-in sample",
+        ),
+        (
+            vec!["render", "--depth", "1", &two_links, "-o", o],
+            "no patch to draw",
         ),
     ] {
         let run = capdiv(&args, None);

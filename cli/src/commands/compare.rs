@@ -10,7 +10,7 @@ use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::output::Sink;
 use crate::picture::draw;
-use crate::shape::{build, read_any, schemes_for, Shape};
+use crate::shape::{build, drawable, read_any, schemes_for, Shape};
 
 /// Runs the command.
 pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
@@ -19,6 +19,9 @@ pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
         .into_iter()
         .map(|s| build(&name, &input, Some(s), args.picture.depth))
         .collect::<Result<_, _>>()?;
+    for s in &shapes {
+        drawable(&name, s, args.picture.depth)?;
+    }
     let refs: Vec<&Shape> = shapes.iter().collect();
     let (cam, shading) = camera(&args.picture);
     let pic = draw(&refs, &cam, shading, true);
