@@ -70,7 +70,12 @@ const VALENCES: &[usize] = if cfg!(miri) {
 } else {
     &[3, 4, 5, 6, 7, 8, 9, 10, 11, 12]
 };
-const SAMPLES: [f64; 5] = [0.0, 0.25, 0.5, 0.9, 1.0];
+/// Sample parameters (under Miri 0, ½, 1).
+const SAMPLES: &[f64] = if cfg!(miri) {
+    &[0.0, 0.5, 1.0]
+} else {
+    &[0.0, 0.25, 0.5, 0.9, 1.0]
+};
 
 /// Ring patches equal the reference's B-spline patches of its refined grid
 /// (literal step, literal basis functions) at sample points: position and
@@ -93,8 +98,8 @@ fn ring_patches_equal_reference_bspline() {
             assert_eq!(k.ring_patches().count(), 3 * n);
             for (idx, patch) in k.ring_patches().enumerate() {
                 let grid = ring_grid(n, &ext, idx / 3, idx % 3);
-                for u in SAMPLES {
-                    for v in SAMPLES {
+                for &u in SAMPLES {
+                    for &v in SAMPLES {
                         let got = patch.evaluate(u, v).unwrap();
                         for (g, (ru, rv)) in
                             [got.position, got.du, got.dv]
@@ -142,7 +147,7 @@ fn rings_and_sectors_join_c2() {
                 worst = worst.max(max_abs_diff(a, b) / scale / h.powi(r));
             };
             for s in 0..n {
-                for t in SAMPLES {
+                for &t in SAMPLES {
                     for r in 0..3usize {
                         let f = 2f64.powi(r as i32); // (size_m / size_{m+1})^r
                         let sc = |p: P3| p.map(|c| c * f);
@@ -349,13 +354,13 @@ fn regular_valence_4_is_the_bspline_of_the_grid() {
     let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(4)];
     let mut k = CcCap::new(at(0.0, 0.0), &nodes, &mut storage).unwrap();
     let mut worst = 0.0f64;
-    // Under Miri two levels.
-    for _ in 0..if cfg!(miri) { 2 } else { 6 } {
+    // Under Miri one level.
+    for _ in 0..if cfg!(miri) { 1 } else { 6 } {
         k.step().unwrap();
         for (idx, patch) in k.ring_patches().enumerate() {
             let dom = k.ring_patch_domain(idx).unwrap();
-            for u in SAMPLES {
-                for v in SAMPLES {
+            for &u in SAMPLES {
+                for &v in SAMPLES {
                     let (gx, gy) = global(dom.sector, dom.x0 + u * dom.size, dom.y0 + v * dom.size);
                     let got = patch.position(u, v).unwrap().0;
                     worst = worst.max(max_abs_diff(got, surface(gx, gy)));
