@@ -13,9 +13,9 @@
 //! The bench also prints the memory of both paths for M = 8, 12, 16, 20.
 //!
 //! Instruction counts (reproducible on a shared machine): run the bench
-//! binary with `--probe stream|in-place DEPTH` under
+//! binary with `--probe stream|in-place DEPTH [f32]` under
 //! `valgrind --tool=callgrind --collect-atstart=no --toggle-collect='*probe_*'`;
-//! it runs one workload once (f64).
+//! it runs one workload once (f64, or f32).
 
 use capdiv::{BicubicPatch, FirstStep, Point3, PolarNetBuf, PolarStream, Real, StreamOptions};
 use criterion::{BenchmarkId, Criterion, Throughput};
@@ -148,20 +148,30 @@ fn memory() {
     );
 }
 
+/// One workload once (for callgrind).
+fn probe<R: Real>(which: &str, depth: u32) -> usize {
+    let (pole, links) = sample::<R>();
+    if which == "stream" {
+        let mut state = Box::new(PolarStream::<R, MAX>::empty());
+        probe_stream(&mut state, pole, &links, depth)
+    } else {
+        let cap = 6 << depth;
+        let mut ls = vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
+        let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
+        probe_in_place(&mut ls, &mut rs, pole, &links, depth)
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(i) = args.iter().position(|a| a == "--probe") {
         let which = args.get(i + 1).map(String::as_str).unwrap_or("stream");
         let depth: u32 = args.get(i + 2).and_then(|d| d.parse().ok()).unwrap_or(10);
-        let (pole, links) = sample::<f64>();
-        let count = if which == "stream" {
-            let mut state = Box::new(PolarStream::<f64, MAX>::empty());
-            probe_stream(&mut state, pole, &links, depth)
+        let f32 = args.get(i + 3).is_some_and(|t| t == "f32");
+        let count = if f32 {
+            probe::<f32>(which, depth)
         } else {
-            let cap = 6 << depth;
-            let mut ls = vec![Point3::ZERO; PolarNetBuf::<f64>::link_storage_len(cap)];
-            let mut rs = vec![[0.0; 2]; PolarNetBuf::<f64>::root_storage_len(cap)];
-            probe_in_place(&mut ls, &mut rs, pole, &links, depth)
+            probe::<f64>(which, depth)
         };
         println!("{which} depth {depth}: {count} patches");
         return;
