@@ -1,11 +1,20 @@
 #!/usr/bin/env bash
 # The whole test suite (the README's test command): host tests of every crate,
-# the kernel with the micromath backend, then the embedded checks (firmware
-# under QEMU, WASM under node, size budgets), which install what they need.
+# the kernel with the micromath backend, then the checks that install what they
+# need on a fresh machine:
+#   ci-embedded.sh   Rust firmware under QEMU, WASM under node, size budgets
+#   ci-stream.sh     streaming C²PS firmware on the Cortex-M0 (16 KiB RAM)
+#   ci-cfirmware.sh  the C ABI staticlib, its cbindgen header, the C firmware under QEMU
+#   ci-viewer.sh     the browser viewer in headless chromium (playwright-core)
+#   ci-fuzz.sh       every cargo-fuzz target, bounded, on its committed corpus
+#   ci-miri.sh       the kernel's tests under Miri (sizes reduced under cfg(miri))
 set -euo pipefail
 cd "$(dirname "$0")/.."
+start=$(date +%s)
 cargo test --workspace --release
 cargo test -p capdiv --release --features micromath --test micromath
-if [ -f scripts/ci-embedded.sh ]; then
-  bash scripts/ci-embedded.sh
-fi
+for check in embedded stream cfirmware viewer fuzz miri; do
+  t0=$(date +%s)
+  bash "scripts/ci-$check.sh"
+  echo "== ci-$check.sh took $(( $(date +%s) - t0 )) s (suite so far $(( $(date +%s) - start )) s)"
+done
