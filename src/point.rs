@@ -82,14 +82,16 @@ impl<R: Real> Neg for Point3<R> {
     type Output = Self;
     #[inline]
     fn neg(self) -> Self {
-        Point3(self.0.map(|c| -c))
+        Point3([-self.0[0], -self.0[1], -self.0[2]])
     }
 }
 impl<R: Real> Mul<R> for Point3<R> {
     type Output = Self;
     #[inline]
     fn mul(self, s: R) -> Self {
-        Point3(self.0.map(|c| c * s))
+        // Written out like `add`: `array::map` is not inlined at opt-level
+        // "z" (the firmware's), and each product became a call.
+        Point3([self.0[0] * s, self.0[1] * s, self.0[2] * s])
     }
 }
 
