@@ -7,7 +7,7 @@
 //! quarters (`u = ui/4`) so the host evaluates at exactly the same points.
 
 use crate::report::{point, Failure};
-use crate::sample::{LINKS, LINKS_GIVEN, POLE, VALENCE};
+use crate::sample::{LINKS_F32, LINKS_GIVEN, POLE_F32, VALENCE};
 use capdiv::{FirstStep, OuterRegion, PolarNet, PoleJet};
 
 /// Steps applied: 6 on the Cortex-M4 board, 3 on the 16 KiB micro:bit.
@@ -26,11 +26,11 @@ type Net = PolarNet<f32, CAP>;
 const STORED: usize = 5;
 
 fn pole() -> [f32; 3] {
-    POLE.map(|c| c as f32)
+    POLE_F32
 }
 
 fn links() -> [[[f32; 3]; VALENCE]; LINKS_GIVEN] {
-    LINKS.map(|l| l.map(|p| p.map(|c| c as f32)))
+    LINKS_F32
 }
 
 /// Runs the workload; logs as it goes.
@@ -139,9 +139,9 @@ fn rts() -> Result<(), Failure> {
     let mut flat = [0.0f32; STORED * VALENCE * 3];
     for (dst, src) in flat
         .iter_mut()
-        .zip(LINKS.iter().take(STORED).flatten().flatten())
+        .zip(LINKS_F32.iter().take(STORED).flatten().flatten())
     {
-        *dst = *src as f32;
+        *dst = *src;
     }
     let mut net = PolarNet::<f32, VALENCE>::from_flat(pole(), VALENCE, &flat)?;
     for k in 1..=3 {

@@ -7,7 +7,7 @@
 //! `embedded-tests/tests/firmware_qemu.rs`.
 
 use crate::report::{point, Failure};
-use crate::sample::{EG_CENTER, EG_NODES_3, EG_NODES_5};
+use crate::sample::{EG_CENTER_F32, EG_NODES_3_F32, EG_NODES_5_F32};
 use capdiv::eg::{CNet, EgSubdivision};
 use capdiv::Point3;
 
@@ -16,16 +16,12 @@ pub const STEPS: u32 = 4;
 
 type Sub = EgSubdivision<'static, f32>;
 
-fn to_f32<const M: usize>(nodes: &[[f64; 3]; M]) -> [[f32; 3]; M] {
-    nodes.map(|p| p.map(|c| c as f32))
-}
-
 /// Runs both samples, one after the other in the same statics; logs as it goes.
 #[inline(never)]
 pub fn run() -> Result<(), Failure> {
     let (net, sub) = statics()?;
-    sample(&EG_NODES_3, net, sub)?;
-    sample(&EG_NODES_5, net, sub)
+    sample(&EG_NODES_3_F32, net, sub)?;
+    sample(&EG_NODES_5_F32, net, sub)
 }
 
 /// The c-net and the subdivision live in statics (`.bss`, size known at link
@@ -43,11 +39,11 @@ fn statics() -> Result<(&'static mut CNet<f32>, &'static mut Sub), Failure> {
 /// One sample: the c-net and its subdivision loaded in place, steps, report.
 #[inline(never)]
 fn sample<const M: usize>(
-    nodes: &[[f64; 3]; M],
+    nodes: &[[f32; 3]; M],
     net: &mut CNet<f32>,
     sub: &mut Sub,
 ) -> Result<(), Failure> {
-    net.reset(EG_CENTER.map(|c| c as f32), &to_f32(nodes))?;
+    net.reset(EG_CENTER_F32, nodes)?;
     sub.reset_from_cnet(net)?;
     one(net, sub)
 }

@@ -138,3 +138,40 @@ pub const EG_NODES_5: [[f64; 3]; 30] = [
     [2.30859375, -0.951171875, 1.296875],
     [2.6181640625, -1.90234375, 2.099609375],
 ];
+
+// The samples in `f32`, converted at compile time (exactly: every coordinate
+// is dyadic). The firmware reads these, so neither the `f64` arrays (2.1 KiB)
+// nor the soft-float `f64 → f32` conversion reach its flash (issue 9).
+
+/// [`POLE`] in `f32`.
+pub const POLE_F32: [f32; 3] = points_f32(&[POLE])[0];
+/// [`LINKS`] in `f32`.
+pub const LINKS_F32: [[[f32; 3]; VALENCE]; LINKS_GIVEN] = {
+    let mut out = [[[0.0; 3]; VALENCE]; LINKS_GIVEN];
+    let mut i = 0;
+    while i < LINKS_GIVEN {
+        out[i] = points_f32(&LINKS[i]);
+        i += 1;
+    }
+    out
+};
+/// [`EG_CENTER`] in `f32`.
+pub const EG_CENTER_F32: [f32; 3] = points_f32(&[EG_CENTER])[0];
+/// [`EG_NODES_3`] in `f32`.
+pub const EG_NODES_3_F32: [[f32; 3]; 18] = points_f32(&EG_NODES_3);
+/// [`EG_NODES_5`] in `f32`.
+pub const EG_NODES_5_F32: [[f32; 3]; 30] = points_f32(&EG_NODES_5);
+
+const fn points_f32<const M: usize>(p: &[[f64; 3]; M]) -> [[f32; 3]; M] {
+    let mut out = [[0.0; 3]; M];
+    let mut i = 0;
+    while i < M {
+        let mut k = 0;
+        while k < 3 {
+            out[i][k] = p[i][k] as f32;
+            k += 1;
+        }
+        i += 1;
+    }
+    out
+}
