@@ -68,32 +68,40 @@ enum Symmetry {
     Spoke,
 }
 
-/// `v mod n` for a signed `v`, `n ≥ 1`.
-fn wrap(v: isize, n: usize) -> usize {
-    let n = n as isize;
-    v.checked_rem_euclid(n).unwrap_or(0) as usize
+/// Column `(i, j)` (index `i + 4j`, `i ≤ 2`) transposed: `(j, i)`.
+#[inline]
+fn transpose(col: usize) -> usize {
+    col / 4 + 4 * (col % 4)
 }
 
-/// The symmetric image `(r', column')` of entry `(r, column)`.
-fn image(sym: Symmetry, n: usize, r: usize, col: usize) -> (usize, usize) {
-    let (i, j) = (col % 4, col / 4);
-    let r = r as isize;
+/// The source rows `(r_a, r_b)` of row `r < n`'s symmetric image: its
+/// columns `i ≤ 2` are row `r_a`'s transposed ([`transpose`]), its columns
+/// `i = 3` row `r_b`'s. No division (`v mod n` for `−n ≤ v ≤ 1`).
+fn image_rows(sym: Symmetry, n: usize, r: usize) -> (usize, usize) {
+    // −k mod n for 0 ≤ k ≤ n.
+    let neg = |k: usize| match n.saturating_sub(k) {
+        m if m == n => 0,
+        m => m,
+    };
     match sym {
-        Symmetry::None => (r as usize, col),
-        Symmetry::FromTwentyOne | Symmetry::Diagonal => {
-            if i <= 2 {
-                (wrap(r.wrapping_neg(), n), j + 4 * i)
-            } else {
-                (wrap(r.wrapping_neg().wrapping_sub(1), n), col)
-            }
-        }
-        Symmetry::Spoke => {
-            if i <= 2 {
-                (wrap(1isize.wrapping_sub(r), n), j + 4 * i)
-            } else {
-                (wrap(r.wrapping_neg(), n), col)
-            }
-        }
+        Symmetry::None => (r, r),
+        // a^r from a^{−r} (i ≤ 2) and a^{−r−1} (i = 3).
+        Symmetry::FromTwentyOne | Symmetry::Diagonal => (neg(r), neg(r.saturating_add(1))),
+        // a^r from a^{1−r} (i ≤ 2) and a^{−r} (i = 3).
+        Symmetry::Spoke => (
+            1usize.checked_sub(r).unwrap_or(neg(r.saturating_sub(1))),
+            neg(r),
+        ),
+    }
+}
+
+/// The symmetric image `(r', column')` of entry `(r, column)`, `r < n`.
+fn image(sym: Symmetry, n: usize, r: usize, col: usize) -> (usize, usize) {
+    let (ra, rb) = image_rows(sym, n, r);
+    match sym {
+        Symmetry::None => (r, col),
+        _ if col % 4 <= 2 => (ra, transpose(col)),
+        _ => (rb, col),
     }
 }
 
@@ -223,17 +231,20 @@ impl<'a> RuleTable<'a> {
             return None;
         }
         let (rows, sym) = self.source(node);
-        let listed = |r: usize| match sym {
+        let listed = match sym {
             Symmetry::FromTwentyOne => None,
             _ => rows.get(r),
         };
-        if let Some(row) = listed(r) {
+        if let Some(row) = listed {
             return Some(*row);
         }
-        let mut out = [0; 12];
+        let (ra, rb) = image_rows(sym, self.valence, r);
+        let (a, b) = (rows.get(ra)?, rows.get(rb)?);
+        let mut out = *b;
         for (col, w) in out.iter_mut().enumerate() {
-            let (r2, c2) = image(sym, self.valence, r, col);
-            *w = *rows.get(r2)?.get(c2)?;
+            if col % 4 <= 2 {
+                *w = *a.get(transpose(col))?;
+            }
         }
         Some(out)
     }
