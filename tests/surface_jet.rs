@@ -76,6 +76,7 @@ fn check<const K: usize>(quad: Quadric, u: f64, v: f64) {
 }
 
 proptest! {
+    #![proptest_config(ProptestConfig::with_cases(if cfg!(miri) { 4 } else { 256 }))]
     #[test]
     fn curvature_of_a_sampled_quadric_is_the_analytic_one(
         a in -2.0f64..2.0, b in -2.0f64..2.0, c in -2.0f64..2.0,
