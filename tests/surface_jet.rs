@@ -76,7 +76,12 @@ fn check<const K: usize>(quad: Quadric, u: f64, v: f64) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(if cfg!(miri) { 4 } else { 256 }))]
+    #![proptest_config(ProptestConfig {
+        // Under Miri: a few cases, no regression files (isolation).
+        cases: if cfg!(miri) { 4 } else { 256 },
+        failure_persistence: if cfg!(miri) { None } else { ProptestConfig::default().failure_persistence },
+        ..ProptestConfig::default()
+    })]
     #[test]
     fn curvature_of_a_sampled_quadric_is_the_analytic_one(
         a in -2.0f64..2.0, b in -2.0f64..2.0, c in -2.0f64..2.0,
