@@ -3,7 +3,10 @@
 //!
 //! For n = 3 and 5, f64 and f32, on one c-net (spec EG.md §1: center and 6
 //! nodes per sector, i.e. 4n quads):
-//! - `eg_step`: one [`EgSubdivision::step`] (built-in §7 table);
+//! - `eg_step`: one [`EgSubdivision::step`] (built-in §7 table, dense
+//!   rule (7): the small-firmware path);
+//! - `eg_fourier_step`: one [`EgSubdivision::step_fourier`] with the
+//!   [`FourierRule`] of that table (built once, like the stencil tables);
 //! - `cc_cap_step`: one [`CcCap::step`], the kernel's own Catmull-Clark cap;
 //! - `sk_cc_step`: subdiv-kernels' Catmull-Clark refinement of the same 4n
 //!   quads, refined once: its level-1 [`StencilTable`] (built once, like
@@ -19,7 +22,7 @@
 //! steps of each (for `valgrind --tool=callgrind`: instruction counts per step,
 //! `scripts/eg-vs-cc-callgrind.sh`).
 
-use capdiv::eg::{CNet, EgSubdivision};
+use capdiv::eg::{CNet, EgSubdivision, FourierRule};
 use capdiv::{CcCap, Point3, Real};
 use criterion::{BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
@@ -85,6 +88,7 @@ struct Case<R: Real> {
     center: [R; 3],
     nodes: Vec<[R; 3]>,
     eg: EgSubdivision<'static, R>,
+    fourier: FourierRule<'static, R>,
     table: StencilTable,
     positions: Vec<[R; 3]>,
 }
@@ -96,6 +100,7 @@ impl<R: SkReal> Case<R> {
         let nodes: Vec<[R; 3]> = nodes.iter().map(|p| p.map(R::from_f64)).collect();
         let net = CNet::new(center, &nodes).expect("valid c-net");
         let eg = EgSubdivision::from_cnet(&net).expect("built-in rule");
+        let fourier = FourierRule::new(eg.table().expect("EG table")).expect("rule");
         let positions: Vec<[R; 3]> = std::iter::once(center)
             .chain(nodes.iter().copied())
             .collect();
@@ -113,6 +118,7 @@ impl<R: SkReal> Case<R> {
             center,
             nodes,
             eg,
+            fourier,
             table,
             positions,
         }
@@ -125,6 +131,18 @@ impl<R: SkReal> Case<R> {
             let t = Instant::now();
             for s in subs.iter_mut() {
                 black_box(s.step()).expect("step");
+            }
+            t.elapsed()
+        })
+    }
+
+    /// `iters` EG steps through the Fourier rule, as [`Case::time_eg`].
+    fn time_eg_fourier(&self, iters: u64) -> Duration {
+        batches(iters, |k| {
+            let mut subs: Vec<_> = (0..k).map(|_| self.eg.clone()).collect();
+            let t = Instant::now();
+            for s in subs.iter_mut() {
+                black_box(s.step_fourier(&self.fourier)).expect("step");
             }
             t.elapsed()
         })
@@ -171,6 +189,9 @@ fn bench_case<R: SkReal>(c: &mut Criterion, prec: &str, n: usize) {
     g.bench_function(BenchmarkId::new("eg_step", n), |b| {
         b.iter_custom(|iters| case.time_eg(iters))
     });
+    g.bench_function(BenchmarkId::new("eg_fourier_step", n), |b| {
+        b.iter_custom(|iters| case.time_eg_fourier(iters))
+    });
     g.bench_function(BenchmarkId::new("cc_cap_step", n), |b| {
         b.iter_custom(|iters| case.time_cc(iters))
     });
@@ -193,6 +214,12 @@ fn bench_case<R: SkReal>(c: &mut Criterion, prec: &str, n: usize) {
 fn probe_eg<R: SkReal>(subs: &mut [EgSubdivision<'static, R>]) {
     for s in subs.iter_mut() {
         black_box(s.step()).expect("step");
+    }
+}
+#[inline(never)]
+fn probe_eg_fourier<R: SkReal>(subs: &mut [EgSubdivision<'static, R>], rule: &FourierRule<'_, R>) {
+    for s in subs.iter_mut() {
+        black_box(s.step_fourier(rule)).expect("step");
     }
 }
 #[inline(never)]
@@ -220,12 +247,26 @@ fn probe<R: SkReal>(n: usize, reps: usize) {
     let rows: Vec<u32> = (0..case.table.output_count() as u32).collect();
     let mut out = vec![[R::ZERO; 3]; rows.len()];
     let mut subs = vec![case.eg.clone(); reps];
+    let mut fast = vec![case.eg.clone(); reps];
     let mut storage = vec![vec![Point3::ZERO; CcCap::<R>::storage_len(n)]; reps];
     let mut caps: Vec<_> = storage
         .iter_mut()
         .map(|st| CcCap::new(case.center, &case.nodes, st).expect("valid c-net"))
         .collect();
     probe_eg(&mut subs);
+    probe_eg_fourier(&mut fast, &case.fourier);
+    // Both paths: the same net up to rounding.
+    for (a, b) in subs.iter().zip(&fast).take(1) {
+        for (p, q) in a
+            .net()
+            .sectors()
+            .iter()
+            .flatten()
+            .zip(b.net().sectors().iter().flatten())
+        {
+            assert!(p.max_abs_diff(*q).to_f64() < 1e-4, "EG paths disagree");
+        }
+    }
     probe_cc(&mut caps);
     probe_sk(&case, reps);
     probe_sk_rows(&case, reps, &rows, &mut out);

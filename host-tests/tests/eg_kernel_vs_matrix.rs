@@ -7,7 +7,7 @@
 //! weights of L1 norm below 4 (largest |a| sum over a row, n ≤ 5), so
 //! round-off stays far below it (measured: a few 1e-16).
 
-use capdiv::eg::{DNet, EgSubdivision, RuleTable};
+use capdiv::eg::{DNet, EgSubdivision, FourierRule, RuleTable};
 use capdiv_reference::eg::{d_index, matrix};
 use nalgebra::DVector;
 use proptest::prelude::*;
@@ -23,6 +23,18 @@ fn dnet_strategy(n: usize) -> impl Strategy<Value = (Vec<[[f64; 3]; 12]>, [f64; 
 
 /// Worst |kernel − matrix| over all nodes after one step, relative to the net size.
 fn deviation(n: usize, sectors: &[[[f64; 3]; 12]], c0: [f64; 3], user_table: bool) -> f64 {
+    deviation_by(n, sectors, c0, user_table, false)
+}
+
+/// [`deviation`] of `step` or, with `fourier`, of `step_fourier` (the
+/// Fourier rule of the subdivision's table).
+fn deviation_by(
+    n: usize,
+    sectors: &[[[f64; 3]; 12]],
+    c0: [f64; 3],
+    user_table: bool,
+    fourier: bool,
+) -> f64 {
     let a = matrix(n, None).expect("built-in table");
     let net = DNet::from_sectors(sectors, Some(c0)).expect("valid d-net");
     let mut eg = if user_table {
@@ -30,7 +42,12 @@ fn deviation(n: usize, sectors: &[[[f64; 3]; 12]], c0: [f64; 3], user_table: boo
     } else {
         EgSubdivision::new(net).unwrap()
     };
-    eg.step().unwrap();
+    if fourier {
+        let rule = FourierRule::new(eg.table().expect("EG table")).unwrap();
+        eg.step_fourier(&rule).unwrap();
+    } else {
+        eg.step().unwrap();
+    }
 
     let dim = 12 * n + 1;
     let mut worst = 0.0f64;
@@ -77,12 +94,31 @@ proptest! {
     fn eg_step_with_builtin_as_user_table_equals_matrix((sectors, c0) in dnet_strategy(5)) {
         prop_assert!(deviation(5, &sectors, c0, true) <= 1e-12);
     }
+
+    /// The Fourier path (issue 9's fast step) against the same matrix, same
+    /// tolerance: the transform's sums have at most 2n terms of weight ≤ 2
+    /// per product, so its round-off stays at a few 1e-16 as well.
+    #[test]
+    fn eg_step_fourier_equals_matrix_product_n3((sectors, c0) in dnet_strategy(3)) {
+        prop_assert!(deviation_by(3, &sectors, c0, false, true) <= 1e-12);
+    }
+
+    #[test]
+    fn eg_step_fourier_equals_matrix_product_n5((sectors, c0) in dnet_strategy(5)) {
+        prop_assert!(deviation_by(5, &sectors, c0, false, true) <= 1e-12);
+    }
+
+    #[test]
+    fn eg_step_fourier_with_user_table_equals_matrix((sectors, c0) in dnet_strategy(5)) {
+        prop_assert!(deviation_by(5, &sectors, c0, true, true) <= 1e-12);
+    }
 }
 
 /// The measured worst case, printed for the record (`--nocapture`).
 #[test]
 fn eg_step_matrix_deviation_report() {
     let mut worst = 0.0f64;
+    let mut fourier = 0.0f64;
     for n in [3usize, 5] {
         for seed in 0..50u64 {
             let mut s = seed.wrapping_add(n as u64 * 1000);
@@ -97,8 +133,11 @@ fn eg_step_matrix_deviation_report() {
                 .collect();
             let c0 = [rnd(), rnd(), rnd()];
             worst = worst.max(deviation(n, &sectors, c0, false));
+            fourier = fourier.max(deviation_by(n, &sectors, c0, false, true));
         }
     }
     println!("EG kernel step vs reference matrix: worst relative deviation {worst:.2e}");
+    println!("EG kernel step_fourier vs reference matrix: worst relative deviation {fourier:.2e}");
+    assert!(fourier <= 1e-12);
     assert!(worst <= 1e-12);
 }

@@ -40,6 +40,7 @@
 //! # Ok::<(), capdiv::Error>(())
 //! ```
 
+pub mod fourier;
 mod layout;
 pub mod net;
 mod refine;
@@ -50,6 +51,7 @@ mod spectrum;
 pub mod subdivision;
 pub mod tables;
 
+pub use fourier::FourierRule;
 pub use net::{CNet, CSector, DNet, DSector, C_SECTOR, D_SECTOR};
 pub use ring::PATCHES_PER_SECTOR;
 pub use rule::{InnerNode, RuleTable, WEIGHT_SCALE};
@@ -71,6 +73,7 @@ const _: () = {
         format::<DSector<R>>();
         format::<EgSubdivision<'static, R>>();
         format::<EgRingPatches<'static, 'static, R>>();
+        format::<FourierRule<'static, R>>();
     }
     all::<f32>();
     all::<f64>();
