@@ -18,7 +18,7 @@ use alloc::boxed::Box;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
-use capdiv::eg::{CNet, EgSubdivision, PatchDomain};
+use capdiv::eg::{CNet, EgSubdivision, FourierRule, PatchDomain, RuleTable};
 use capdiv::{CcCap, Error, FirstStep, Point3, PolarNetBuf, PoleJet, Real, TensorPatch};
 
 /// What a patch is made by.
@@ -189,6 +189,9 @@ pub struct Evaluator<R: Real> {
     cnet: Vec<[R; 3]>,
     cc: Vec<Point3<R>>,
     eg: Box<EgSubdivision<'static, R>>,
+    /// Rule (7) in the Fourier basis for each built-in EG valence the plan
+    /// has (n = 3, 5), built once: the caps' fast step (issue 9).
+    eg_rules: Vec<FourierRule<'static, R>>,
 }
 
 impl<R: Real> Evaluator<R> {
@@ -224,6 +227,15 @@ impl<R: Real> Evaluator<R> {
             cnet: vec![[R::ZERO; 3]; 6 * max_ev],
             cc: vec![Point3::ZERO; CcCap::<R>::storage_len(max_ev.max(3))],
             eg: Box::new(EgSubdivision::empty()),
+            eg_rules: [3, 5]
+                .into_iter()
+                .filter(|&n| {
+                    plan.ev
+                        .iter()
+                        .any(|e| e.scheme == Scheme::Eg && e.sectors.len() == n)
+                })
+                .filter_map(|n| FourierRule::new(&RuleTable::builtin(n)?).ok())
+                .collect(),
         })
     }
 
@@ -464,11 +476,13 @@ impl<R: Real> Evaluator<R> {
                         let mut eg = EgSubdivision::empty();
                         eg.reset_from_cnet_with_table(&net, *table)
                             .map_err(kernel)?;
-                        run_eg(&mut eg, depth, sink, &emit, e, index)?;
+                        run_eg(&mut eg, None, depth, sink, &emit, e, index)?;
                     }
                     None => {
                         self.eg.reset_from_cnet(&net).map_err(kernel)?;
-                        run_eg(&mut self.eg, depth, sink, &emit, e, index)?;
+                        let n = self.eg.valence();
+                        let rule = self.eg_rules.iter().find(|r| r.valence() == n);
+                        run_eg(&mut self.eg, rule, depth, sink, &emit, e, index)?;
                     }
                 }
             }
@@ -513,11 +527,13 @@ enum Geom<R> {
     Quartic(TensorPatch<R, 5>),
 }
 
-/// Runs an EG cap to `depth`, emitting its rings and then the cap record
+/// Runs an EG cap to `depth` (through `rule`, the Fourier form of its
+/// built-in table, when given), emitting its rings and then the cap record
 /// (normal: the mean of the last ring's normals at the corners nearest the
 /// centre, one per sector).
 fn run_eg<R: Real, F>(
     eg: &mut EgSubdivision<'_, R>,
+    rule: Option<&FourierRule<'_, R>>,
     depth: u32,
     sink: &mut dyn SurfaceSink<R>,
     emit: &F,
@@ -531,7 +547,11 @@ where
     let limit = eg.c0();
     let mut normal_sum = Point3::ZERO;
     for m in 1..=depth {
-        eg.step().map_err(kernel)?;
+        match rule {
+            Some(rule) => eg.step_fourier(rule),
+            None => eg.step(),
+        }
+        .map_err(kernel)?;
         for (k, patch) in eg.ring_patches().enumerate() {
             let dom = eg.ring_patch_domain(k).map_err(kernel)?;
             if m == depth && k % 3 == 0 {
