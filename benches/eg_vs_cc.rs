@@ -167,7 +167,7 @@ impl<R: SkReal> Case<R> {
 }
 
 /// Steps per timed batch of the stateful steps (their copies stay in cache).
-const B: usize = 8;
+const B: usize = 4;
 
 fn batches(iters: u64, mut batch: impl FnMut(usize) -> Duration) -> Duration {
     let mut left = iters as usize;
