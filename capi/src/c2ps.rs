@@ -126,16 +126,9 @@ pub(crate) unsafe fn refine<R: Real>(
     out: *mut R,
     out_len: usize,
 ) -> i32 {
+    let input = (pole, coords, coords_len, valence, steps, plain);
     // SAFETY: forwarded caller contract.
-    let net = match unsafe { refined(pole, coords, coords_len, valence, steps, plain, work) } {
-        Ok(net) => net,
-        Err(c) => return c,
-    };
-    // SAFETY: forwarded caller contract.
-    match unsafe { output(out, out_len) } {
-        Ok(out) => write_refined(&net, out),
-        Err(c) => c,
-    }
+    unsafe { refined_into(input, work, out, out_len, write_refined) }
 }
 
 /// The jet call over a work buffer.
@@ -154,6 +147,26 @@ pub(crate) unsafe fn jet<R: Real>(
     out: *mut R,
     out_len: usize,
 ) -> i32 {
+    let input = (pole, coords, coords_len, valence, steps, plain);
+    // SAFETY: forwarded caller contract.
+    unsafe { refined_into(input, work, out, out_len, write_jet) }
+}
+
+/// `(pole, coords, coords_len, valence, steps, plain)` of a call.
+type Input<R> = (*const R, *const R, usize, usize, u32, u32);
+
+/// The refine and jet calls' common part: the net refined in `work`
+/// ([`refined`]), then `write` into the caller's `out` (its code returned).
+///
+/// # Safety
+/// As the exported `capdiv_c2ps_refine_f32`.
+unsafe fn refined_into<R: Real>(
+    (pole, coords, coords_len, valence, steps, plain): Input<R>,
+    work: &mut [R],
+    out: *mut R,
+    out_len: usize,
+    write: impl FnOnce(&PolarNetBuf<'_, R>, &mut [R]) -> i32,
+) -> i32 {
     // SAFETY: forwarded caller contract.
     let net = match unsafe { refined(pole, coords, coords_len, valence, steps, plain, work) } {
         Ok(net) => net,
@@ -161,7 +174,7 @@ pub(crate) unsafe fn jet<R: Real>(
     };
     // SAFETY: forwarded caller contract.
     match unsafe { output(out, out_len) } {
-        Ok(out) => write_jet(&net, out),
+        Ok(out) => write(&net, out),
         Err(c) => c,
     }
 }

@@ -60,21 +60,17 @@ pub(crate) unsafe fn refine<R: Real>(
     out: *mut R,
     out_len: usize,
 ) -> i32 {
-    let mut sub = EgSubdivision::empty();
+    let input = (center, nodes, nodes_len, steps);
     // SAFETY: forwarded caller contract.
-    if let Err(c) = unsafe { eg_refined(center, nodes, nodes_len, steps, &mut sub) } {
-        return c;
+    unsafe {
+        refined_into(input, out, out_len, |sub, out| {
+            let d = sub.net();
+            let n = d.valence();
+            let head = [R::from_f64(n as f64)].into_iter().chain(d.c0().0);
+            let body = d.sectors().iter().flatten().flat_map(|p| p.0);
+            emit(out, head.chain(body), refine_len(n).unwrap_or(usize::MAX))
+        })
     }
-    // SAFETY: forwarded caller contract.
-    let out = match unsafe { output(out, out_len) } {
-        Ok(out) => out,
-        Err(c) => return c,
-    };
-    let d = sub.net();
-    let n = d.valence();
-    let head = [R::from_f64(n as f64)].into_iter().chain(d.c0().0);
-    let body = d.sectors().iter().flatten().flat_map(|p| p.0);
-    emit(out, head.chain(body), refine_len(n).unwrap_or(usize::MAX))
 }
 
 /// The last step's ring: `3n` bi-4 patches of 5×5 control points
@@ -90,19 +86,38 @@ pub(crate) unsafe fn ring<R: Real>(
     out: *mut R,
     out_len: usize,
 ) -> i32 {
+    let input = (center, nodes, nodes_len, steps);
+    // SAFETY: forwarded caller contract.
+    unsafe {
+        refined_into(input, out, out_len, |sub, out| {
+            let count = sub.ring_len().saturating_mul(75);
+            let values = sub
+                .ring_patches()
+                .flat_map(|patch| patch.points.into_iter().flatten().flat_map(|p| p.0));
+            emit(out, values, count)
+        })
+    }
+}
+
+/// The refine and ring calls' common part: the c-net refined on the stack
+/// ([`eg_refined`]), then `write` into the caller's `out` (its code returned).
+///
+/// # Safety
+/// As the exported `capdiv_eg_refine_f32`.
+unsafe fn refined_into<R: Real>(
+    (center, nodes, nodes_len, steps): (*const R, *const R, usize, u32),
+    out: *mut R,
+    out_len: usize,
+    write: impl FnOnce(&EgSubdivision<'static, R>, &mut [R]) -> i32,
+) -> i32 {
     let mut sub = EgSubdivision::empty();
     // SAFETY: forwarded caller contract.
     if let Err(c) = unsafe { eg_refined(center, nodes, nodes_len, steps, &mut sub) } {
         return c;
     }
     // SAFETY: forwarded caller contract.
-    let out = match unsafe { output(out, out_len) } {
-        Ok(out) => out,
-        Err(c) => return c,
-    };
-    let count = sub.ring_len().saturating_mul(75);
-    let values = sub
-        .ring_patches()
-        .flat_map(|patch| patch.points.into_iter().flatten().flat_map(|p| p.0));
-    emit(out, values, count)
+    match unsafe { output(out, out_len) } {
+        Ok(out) => write(&sub, out),
+        Err(c) => c,
+    }
 }
