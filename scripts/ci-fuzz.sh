@@ -37,6 +37,7 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
 fi
 
 start=$(date +%s)
+(cd fuzz && cargo fmt --check)
 target_dir=${CARGO_TARGET_DIR:-$root/fuzz/target}
 # Every target (cargo fuzz build takes at most one name).
 (cd fuzz && cargo +nightly fuzz build -s none --target-dir "$target_dir")

@@ -42,13 +42,33 @@ fn polar(p: &capdiv_cli::input::PolarInput) {
     }
     let fin = small(p.links.iter().flatten().copied().chain([p.pole]));
     for first in [FirstStep::Uniform, FirstStep::Plain] {
-        not_nonfinite(&refine::refine::<f64>(NAME, p, Scheme::C2ps, 2, first), fin, "refine c2ps f64");
-        not_nonfinite(&refine::refine::<f32>(NAME, p, Scheme::C2ps, 2, first), fin, "refine c2ps f32");
+        not_nonfinite(
+            &refine::refine::<f64>(NAME, p, Scheme::C2ps, 2, first),
+            fin,
+            "refine c2ps f64",
+        );
+        not_nonfinite(
+            &refine::refine::<f32>(NAME, p, Scheme::C2ps, 2, first),
+            fin,
+            "refine c2ps f32",
+        );
     }
-    not_nonfinite(&refine::refine::<f64>(NAME, p, Scheme::Rts, 2, FirstStep::Uniform), fin, "rts");
+    not_nonfinite(
+        &refine::refine::<f64>(NAME, p, Scheme::Rts, 2, FirstStep::Uniform),
+        fin,
+        "rts",
+    );
     assert!(refine::refine::<f64>(NAME, p, Scheme::Eg, 1, FirstStep::Uniform).is_err());
-    not_nonfinite(&patches::collect::<f64>(NAME, p, 2, FirstStep::Uniform), fin, "patches f64");
-    not_nonfinite(&patches::collect::<f32>(NAME, p, 2, FirstStep::Uniform), fin, "patches f32");
+    not_nonfinite(
+        &patches::collect::<f64>(NAME, p, 2, FirstStep::Uniform),
+        fin,
+        "patches f64",
+    );
+    not_nonfinite(
+        &patches::collect::<f32>(NAME, p, 2, FirstStep::Uniform),
+        fin,
+        "patches f32",
+    );
     let _ = pole::pole::<f64>(NAME, p);
     let _ = pole::pole::<f32>(NAME, p);
 }
@@ -59,11 +79,27 @@ fn eg_input(input: &Input, e: &EgInput, points: Vec<[f64; 3]>) {
     }
     let fin = small(points);
     for steps in [0, 2] {
-        not_nonfinite(&refine::refine_eg::<f64>(NAME, e, steps, None), fin, "refine eg f64");
-        not_nonfinite(&refine::refine_eg::<f32>(NAME, e, steps, None), fin, "refine eg f32");
+        not_nonfinite(
+            &refine::refine_eg::<f64>(NAME, e, steps, None),
+            fin,
+            "refine eg f64",
+        );
+        not_nonfinite(
+            &refine::refine_eg::<f32>(NAME, e, steps, None),
+            fin,
+            "refine eg f32",
+        );
     }
-    not_nonfinite(&patches::collect_eg::<f64>(NAME, e, 2, None), fin, "patches eg f64");
-    not_nonfinite(&patches::collect_eg::<f32>(NAME, e, 2, None), fin, "patches eg f32");
+    not_nonfinite(
+        &patches::collect_eg::<f64>(NAME, e, 2, None),
+        fin,
+        "patches eg f64",
+    );
+    not_nonfinite(
+        &patches::collect_eg::<f32>(NAME, e, 2, None),
+        fin,
+        "patches eg f32",
+    );
     let _ = pole::eg_limit::<f64>(NAME, input);
     let _ = pole::eg_limit::<f32>(NAME, input);
     let _ = eg::dnet::<f64>(NAME, e);
@@ -74,8 +110,13 @@ fn mesh(text: &str, depth: u32) {
         name: NAME.into(),
         text: text.into(),
     };
-    let Ok(m) = surface::read_mesh(&source) else { return };
-    if m.vertices.len() > 300 || m.faces.len() > 300 || m.faces.iter().map(Vec::len).sum::<usize>() > 1500 {
+    let Ok(m) = surface::read_mesh(&source) else {
+        return;
+    };
+    if m.vertices.len() > 300
+        || m.faces.len() > 300
+        || m.faces.iter().map(Vec::len).sum::<usize>() > 1500
+    {
         return;
     }
     let fin = small(m.vertices.iter().copied());
@@ -104,7 +145,9 @@ fuzz_target!(|data: &[u8]| {
 });
 
 fn one(data: &[u8]) {
-    let Ok(text) = std::str::from_utf8(data) else { return };
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
     let depth = 1 + (data.len() % 2) as u32;
     let parsed = parse(NAME, text);
     // `Source::parse` (the single-configuration commands) refuses meshes.
@@ -122,7 +165,13 @@ fn one(data: &[u8]) {
         Ok(Input::Polar(p)) => polar(&p),
         Ok(input @ Input::Cnet(_)) | Ok(input @ Input::Dnet(_)) => {
             let points: Vec<[f64; 3]> = match &input {
-                Input::Cnet(c) => c.sectors.iter().flatten().copied().chain([c.center]).collect(),
+                Input::Cnet(c) => c
+                    .sectors
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .chain([c.center])
+                    .collect(),
                 Input::Dnet(d) => d.sectors.iter().flatten().copied().chain(d.c0).collect(),
                 _ => Vec::new(),
             };

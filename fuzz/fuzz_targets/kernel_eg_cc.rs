@@ -1,5 +1,5 @@
 //! EG and Catmull-Clark kernels: `CNet`, `DNet`, `EgSubdivision` (new,
-//! reset*, step, ring patches, `DNet::refined`), `RuleTable::new` on
+//! reset*, step, step_fourier against step, ring patches, `DNet::refined`), `RuleTable::new` on
 //! arbitrary integer arrays (and mutations of the published ones), `CcCap`
 //! (new with arbitrary storage length, step, ring patches, limit, normal) on
 //! arbitrary f32 / f64 bit patterns.
@@ -12,6 +12,7 @@
 
 use arbitrary::{Result, Unstructured};
 use capdiv::eg::tables::{self, Row};
+use capdiv::eg::FourierRule;
 use capdiv::{CNet, CcCap, DNet, EgSubdivision, Error, Point3, RuleTable};
 use capdiv_fuzz::{all_finite, arb_point, arb_pool, bounded, point_bits, FuzzReal};
 use libfuzzer_sys::fuzz_target;
@@ -191,6 +192,80 @@ fn arb_rows(u: &mut Unstructured<'_>) -> Result<(usize, [Vec<Row>; 5])> {
     Ok((n, arrays))
 }
 
+/// `step_fourier` with the Fourier rule of the subdivision's table, or of a
+/// built-in table of any valence: the same outcome as the dense `step` with
+/// the rule's table on a copy (the same error with the state bitwise
+/// unchanged, or a finite net within a few thousand ulps of the largest old
+/// coordinate of the dense step's), or `TableShape` for a rule of another
+/// valence.
+fn fourier_step<R: FuzzReal>(
+    u: &mut Unstructured<'_>,
+    eg: &mut EgSubdivision<'_, R>,
+) -> Result<()> {
+    let rule = match (eg.table(), u.arbitrary::<bool>()?) {
+        (Some(t), true) => FourierRule::new(t),
+        _ => {
+            let Some(t) = RuleTable::builtin(*u.choose(&[3usize, 5])?) else {
+                return Ok(());
+            };
+            FourierRule::new(&t)
+        }
+    };
+    let rule = rule.expect("the Fourier rule of a checked table");
+    let before = snap_eg(eg);
+    let old = eg.net().clone();
+    // The dense step with the rule's table (which may differ from the
+    // subdivision's: `step_fourier` applies the rule's).
+    let mut dense = None;
+    let want = if eg.valence() == 0 {
+        Err(Error::ValenceTooSmall { valence: 0 })
+    } else if rule.valence() != eg.valence() || eg.table().is_none() {
+        Err(Error::TableShape)
+    } else {
+        let mut d = EgSubdivision::with_table(old.clone(), *rule.table())
+            .expect("a held net is finite and of the table's valence");
+        let r = d.step();
+        dense = Some(d);
+        r
+    };
+    let got = eg.step_fourier(&rule);
+    assert_eq!(got, want, "step_fourier and step disagree");
+    let Some(dense) = dense.filter(|_| got.is_ok()) else {
+        assert_eq!(before, snap_eg(eg), "step_fourier {got:?} changed state");
+        return Ok(());
+    };
+    assert!(dnet_finite(eg.net()), "Ok step_fourier not finite");
+    let m = old
+        .sectors()
+        .iter()
+        .flatten()
+        .copied()
+        .chain([old.c0()])
+        .flat_map(|p| p.0)
+        .fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
+    // Plus 256 quanta of the subnormal range (2^-149 in f32, 2^-1074 in
+    // f64), where rounding is absolute: each node sums at most 12n + 1 terms.
+    let quantum = if R::EPSILON.to_f64() > 1e-10 {
+        1.401_298_464_324_817e-45
+    } else {
+        4.940_656_458_412_465e-324
+    };
+    let tol = R::EPSILON.to_f64() * 4096.0 * m + 256.0 * quantum;
+    for (p, q) in eg
+        .net()
+        .sectors()
+        .iter()
+        .flatten()
+        .zip(dense.net().sectors().iter().flatten())
+    {
+        assert!(
+            p.max_abs_diff(*q).to_f64() <= tol,
+            "step_fourier {p:?} vs step {q:?}"
+        );
+    }
+    Ok(())
+}
+
 fn eg_ops<'t, R: FuzzReal>(
     u: &mut Unstructured<'_>,
     eg: &mut EgSubdivision<'t, R>,
@@ -207,7 +282,13 @@ fn eg_ops<'t, R: FuzzReal>(
                 let center = arb_point::<R>(u)?;
                 let r = CNet::new(center, &nodes);
                 let flat: Vec<R> = nodes.iter().flatten().copied().collect();
-                assert_eq!(r.as_ref().err().copied(), CNet::from_flat(center, &flat).as_ref().err().map(points_err));
+                assert_eq!(
+                    r.as_ref().err().copied(),
+                    CNet::from_flat(center, &flat)
+                        .as_ref()
+                        .err()
+                        .map(points_err)
+                );
                 let Ok(cnet) = r else { continue };
                 if bounded(nodes.iter().copied().chain([center]), 20) {
                     assert!(cnet.limit().is_finite(), "c-net limit not finite");
@@ -216,7 +297,9 @@ fn eg_ops<'t, R: FuzzReal>(
                 if cnet.valence() == 4 {
                     if let Ok(cap) = cnet.regular_cap() {
                         if bounded(nodes.iter().copied().chain([center]), 20) {
-                            assert!(cap.iter().all(|p| all_finite(p.points.iter().flatten().copied())));
+                            assert!(cap
+                                .iter()
+                                .all(|p| all_finite(p.points.iter().flatten().copied())));
                         }
                     }
                 }
@@ -226,7 +309,9 @@ fn eg_ops<'t, R: FuzzReal>(
                     _ => eg.reset_from_cnet(&cnet),
                 };
                 match r {
-                    Err(e) => assert_eq!(before, snap_eg(eg), "reset_from_cnet {e:?} changed state"),
+                    Err(e) => {
+                        assert_eq!(before, snap_eg(eg), "reset_from_cnet {e:?} changed state")
+                    }
                     Ok(()) => {
                         assert!(dnet_finite(eg.net()), "Ok reset_from_cnet not finite");
                         steps = 0;
@@ -239,10 +324,17 @@ fn eg_ops<'t, R: FuzzReal>(
             1 => {
                 let count = arb_count(u, 12)?;
                 let nodes = arb_points::<R>(u, count)?;
-                let c0 = if u.arbitrary::<bool>()? { Some(arb_point::<R>(u)?) } else { None };
+                let c0 = if u.arbitrary::<bool>()? {
+                    Some(arb_point::<R>(u)?)
+                } else {
+                    None
+                };
                 let r = DNet::new(&nodes, c0);
                 let flat: Vec<R> = nodes.iter().flatten().copied().collect();
-                assert_eq!(r.as_ref().err().copied(), DNet::from_flat(&flat, c0).as_ref().err().map(points_err));
+                assert_eq!(
+                    r.as_ref().err().copied(),
+                    DNet::from_flat(&flat, c0).as_ref().err().map(points_err)
+                );
                 let Ok(d) = r else { continue };
                 let before = snap_eg(eg);
                 let r = match (&table, u.arbitrary::<bool>()?) {
@@ -264,6 +356,10 @@ fn eg_ops<'t, R: FuzzReal>(
                 }
                 steps += 1;
                 let before = snap_eg(eg);
+                if u.arbitrary::<bool>()? {
+                    fourier_step(u, eg)?;
+                    continue;
+                }
                 match eg.step() {
                     Err(e) => assert_eq!(before, snap_eg(eg), "step {e:?} changed state"),
                     Ok(()) => assert!(dnet_finite(eg.net()), "Ok EG step not finite"),
@@ -329,7 +425,9 @@ fn run_cc<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
     let cap = match CcCap::new(center, &nodes, &mut storage) {
         Ok(c) => c,
         Err(_) => {
-            assert!(storage.iter().all(|p| p.0.map(|c| c.bits()) == sentinel.0.map(|c| c.bits())));
+            assert!(storage
+                .iter()
+                .all(|p| p.0.map(|c| c.bits()) == sentinel.0.map(|c| c.bits())));
             return Ok(());
         }
     };
@@ -343,7 +441,10 @@ fn run_cc<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 assert_eq!(before, snap_cc(&cap), "CC step {e:?} changed state");
                 break;
             }
-            Ok(()) => assert!(all_finite(cc_points(&cap).into_iter().map(Point3)), "Ok CC step not finite"),
+            Ok(()) => assert!(
+                all_finite(cc_points(&cap).into_iter().map(Point3)),
+                "Ok CC step not finite"
+            ),
         }
         let small_now = small && bounded(cc_points(&cap), 20);
         let patches: Vec<_> = cap.ring_patches().collect();
@@ -351,7 +452,10 @@ fn run_cc<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
         for (k, p) in patches.iter().enumerate() {
             assert!(cap.ring_patch_domain(k).is_ok());
             if small_now {
-                assert!(all_finite(p.points.iter().flatten().copied()), "CC patch not finite");
+                assert!(
+                    all_finite(p.points.iter().flatten().copied()),
+                    "CC patch not finite"
+                );
             }
         }
         assert!(cap.ring_patch(cap.ring_len()).is_err());
@@ -373,7 +477,10 @@ fn run_cc<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
         );
     }
     if let Ok((t1, t2)) = cap.limit_tangents() {
-        assert!(t1.is_finite() && t2.is_finite(), "Ok CC tangents not finite");
+        assert!(
+            t1.is_finite() && t2.is_finite(),
+            "Ok CC tangents not finite"
+        );
     }
     match cap.try_limit() {
         Ok(p) => assert!(p.is_finite(), "Ok CC try_limit not finite"),

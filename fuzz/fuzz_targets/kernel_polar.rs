@@ -29,7 +29,10 @@ fn arb_cfg<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<Cfg<R>> {
     let mismatch: u8 = u.arbitrary()?;
     let pool = arb_pool::<R>(u, 8)?;
     let scale = R::arb(u)?.to_f64();
-    let shape = [f64::from(u.arbitrary::<i8>()?) / 16.0, f64::from(u.arbitrary::<i8>()?) / 16.0];
+    let shape = [
+        f64::from(u.arbitrary::<i8>()?) / 16.0,
+        f64::from(u.arbitrary::<i8>()?) / 16.0,
+    ];
     let pick = |i: usize| pool[i % pool.len()];
     let mut links = Vec::with_capacity(nl);
     for k in 0..nl {
@@ -146,7 +149,10 @@ fn jet_bits<R: FuzzReal>(j: &PoleJet<R>) -> Vec<u64> {
 
 fn check_jet<R: FuzzReal>(jet: &PoleJet<R>, finite_expected: bool) {
     if finite_expected {
-        assert!(all_finite(jet.p), "jet not finite for bounded input: {jet:?}");
+        assert!(
+            all_finite(jet.p),
+            "jet not finite for bounded input: {jet:?}"
+        );
     }
     if let Ok(g) = jet.geometry() {
         assert!(
@@ -201,10 +207,18 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                     (Err(e), Ok(())) => assert!(false, "new failed where reset Ok: {e:?}"),
                 }
                 if rn.is_err() {
-                    assert_eq!(before_n, snap_net(&net), "reset error {rn:?} changed the net");
+                    assert_eq!(
+                        before_n,
+                        snap_net(&net),
+                        "reset error {rn:?} changed the net"
+                    );
                 }
                 if rb.is_err() {
-                    assert_eq!(before_b, snap_buf(&buf), "reset error {rb:?} changed the buf net");
+                    assert_eq!(
+                        before_b,
+                        snap_buf(&buf),
+                        "reset error {rb:?} changed the buf net"
+                    );
                 }
                 match (&rn, &rb) {
                     (Ok(()), Ok(())) => {
@@ -225,16 +239,24 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                     continue;
                 }
                 steps += 1;
-                let first = if u.arbitrary::<bool>()? { FirstStep::Uniform } else { FirstStep::Plain };
+                let first = if u.arbitrary::<bool>()? {
+                    FirstStep::Uniform
+                } else {
+                    FirstStep::Plain
+                };
                 let (before_n, before_b) = (snap_net(&net), snap_buf(&buf));
                 let rn = net.step(first);
                 let rb = buf.step(first);
                 match &rn {
-                    Err(e) => assert_eq!(before_n, snap_net(&net), "step error {e:?} changed the net"),
+                    Err(e) => {
+                        assert_eq!(before_n, snap_net(&net), "step error {e:?} changed the net")
+                    }
                     Ok(()) => assert!(links_finite_net(&net), "Ok step not finite"),
                 }
                 match &rb {
-                    Err(e) => assert_eq!(before_b, snap_buf(&buf), "step error {e:?} changed the buf"),
+                    Err(e) => {
+                        assert_eq!(before_b, snap_buf(&buf), "step error {e:?} changed the buf")
+                    }
                     Ok(()) => assert!(links_finite_buf(&buf), "Ok buf step not finite"),
                 }
                 if rn.is_ok() != rb.is_ok() {
@@ -250,11 +272,15 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 let rn = net.try_rts_step();
                 let rb = buf.try_rts_step();
                 match &rn {
-                    Err(e) => assert_eq!(before_n, snap_net(&net), "rts error {e:?} changed the net"),
+                    Err(e) => {
+                        assert_eq!(before_n, snap_net(&net), "rts error {e:?} changed the net")
+                    }
                     Ok(()) => assert!(links_finite_net(&net), "Ok rts step not finite"),
                 }
                 match &rb {
-                    Err(e) => assert_eq!(before_b, snap_buf(&buf), "rts error {e:?} changed the buf"),
+                    Err(e) => {
+                        assert_eq!(before_b, snap_buf(&buf), "rts error {e:?} changed the buf")
+                    }
                     Ok(()) => assert!(links_finite_buf(&buf), "Ok buf rts step not finite"),
                 }
                 if rn.is_ok() != rb.is_ok() {
@@ -266,7 +292,9 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 let pb = buf.ring_patches().map(|r| r.collect::<Vec<_>>());
                 for (ps, small) in [(&pn, net_small(&net)), (&pb, buf_small(&buf))] {
                     if let (Ok(ps), true) = (ps, small) {
-                        assert!(ps.iter().all(|p| all_finite(p.points.iter().flatten().copied())));
+                        assert!(ps
+                            .iter()
+                            .all(|p| all_finite(p.points.iter().flatten().copied())));
                     }
                 }
                 if synced {

@@ -41,16 +41,24 @@ fn points<R: FuzzReal>(g: &PatchGeometry<R>) -> Vec<Point3<R>> {
 }
 
 fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) {
-    let Ok(mut ev) = Evaluator::<R>::new(plan) else { return };
+    let Ok(mut ev) = Evaluator::<R>::new(plan) else {
+        return;
+    };
     let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
-    let mut sink = Collect { patches: Vec::new(), caps: Vec::new() };
+    let mut sink = Collect {
+        patches: Vec::new(),
+        caps: Vec::new(),
+    };
     let r = ev.evaluate(plan, &positions, &mut sink);
     // Every successful evaluation is finite, at any magnitude (overflow is
     // EvalError::Overflow or the kernel's NonFinite).
     if r.is_err() {
         return;
     }
-    let size = positions.iter().flatten().fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
+    let size = positions
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, c| m.max(c.to_f64().abs()));
     for p in &sink.patches {
         assert!(
             points(&p.geometry).iter().all(|q| q.is_finite()),
@@ -67,7 +75,11 @@ fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) 
             assert!(n.is_finite(), "{} cap normal not finite", R::NAME);
         }
         if let Some(k) = c.principal_curvatures {
-            assert!(k.iter().all(|x| x.is_finite()), "{} cap curvatures not finite", R::NAME);
+            assert!(
+                k.iter().all(|x| x.is_finite()),
+                "{} cap curvatures not finite",
+                R::NAME
+            );
         }
     }
     // Tessellate (bounded: a few hundred samples; the sorts of the weld and
@@ -90,7 +102,10 @@ fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) 
         assert_eq!(t.positions.len(), t.normals.len());
         assert_eq!(t.faces.len(), t.tags.len());
         for f in &t.faces {
-            assert!(f.corners().iter().all(|&c| (c as usize) < t.positions.len()));
+            assert!(f
+                .corners()
+                .iter()
+                .all(|&c| (c as usize) < t.positions.len()));
         }
         let _ = is_closed_and_oriented(&t.faces);
     }
@@ -99,13 +114,24 @@ fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) 
 /// Bounded work per input (about 10⁴ executions per second): at most 200
 /// vertices, 200 faces and 800 corners.
 fn pipeline(mesh: &MeshInput, depth: u32, grid: usize, f32_run: bool) {
-    if mesh.vertices.len() > 200 || mesh.faces.len() > 200 || mesh.faces.iter().map(Vec::len).sum::<usize>() > 800 {
+    if mesh.vertices.len() > 200
+        || mesh.faces.len() > 200
+        || mesh.faces.iter().map(Vec::len).sum::<usize>() > 800
+    {
         return;
     }
-    let Ok(topo) = Topology::new(mesh) else { return };
+    let Ok(topo) = Topology::new(mesh) else {
+        return;
+    };
     let same = Topology::from_faces(mesh.vertices.len(), &mesh.faces);
     assert!(same.is_ok());
-    let Ok(plan) = SurfacePlan::new(&topo, PlanOptions { depth, ..Default::default() }) else {
+    let Ok(plan) = SurfacePlan::new(
+        &topo,
+        PlanOptions {
+            depth,
+            ..Default::default()
+        },
+    ) else {
         return;
     };
     if f32_run {
@@ -193,12 +219,16 @@ fn arb_mesh(u: &mut Unstructured<'_>) -> Result<MeshInput> {
 }
 
 fuzz_target!(|data: &[u8]| {
-    let Some((&mode, rest)) = data.split_first() else { return };
+    let Some((&mode, rest)) = data.split_first() else {
+        return;
+    };
     let depth = 1 + u32::from(mode >> 7);
     let grid = 1 + usize::from((mode >> 5) & 1);
     let f32_run = mode & 0x40 != 0;
     if mode & 1 == 0 {
-        let Ok(text) = std::str::from_utf8(rest) else { return };
+        let Ok(text) = std::str::from_utf8(rest) else {
+            return;
+        };
         if let Ok(mesh) = parse_obj(text) {
             pipeline(&mesh, depth, grid, f32_run);
         }
