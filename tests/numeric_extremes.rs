@@ -11,7 +11,7 @@
 //! C²PS/RTS step never fails below `MAX/(16·N)`, an EG step never below
 //! `MAX/1024`.
 
-use capdiv::eg::{CNet, EgSubdivision};
+use capdiv::eg::{CNet, EgSubdivision, FourierRule};
 use capdiv::{CcCap, Error, FirstStep, Point3, PolarNet, PoleJet, Real};
 use proptest::prelude::*;
 
@@ -276,8 +276,23 @@ fn eg_contract<R: Range>(n: usize, scale: Scale, seed: u64) -> Result<(), TestCa
         }
     };
     prop_assert!(eg.net().is_finite());
+    // The Fourier step (issue 9) alongside: the same outcome at every scale,
+    // its state unchanged on error.
+    let mut fast = eg.clone();
+    let rule = eg.table().map(|t| FourierRule::new(t).unwrap());
     // Under Miri (an EG step and ring take seconds there) one step.
     for _ in 0..if cfg!(miri) { 1 } else { 4 } {
+        if let Some(rule) = &rule {
+            let before = fast.net().clone();
+            let dense = fast.clone().step();
+            let got = fast.step_fourier(rule);
+            prop_assert_eq!(got, dense);
+            if got.is_err() {
+                prop_assert_eq!(fast.net(), &before);
+            } else {
+                prop_assert!(fast.net().is_finite());
+            }
+        }
         let before = (
             bits(eg.net().sectors().iter().flatten().copied()),
             eg.level(),
