@@ -17,16 +17,17 @@
 //! the rule is built. Per step that is `12·(n + …)` point operations for the
 //! transforms and `72·(2n − 1)` (odd n) for the products, against `72n²` for
 //! the dense sum: 666 → ~520 point terms at n = 3, 1,830 → ~1,000 at n = 5
-//! (`benches/eg_vs_cc.rs`; README "EG speed").
+//! (`benches/eg_vs_cc.rs`; README, Benchmarks, "EG against Catmull-Clark").
 //!
 //! The outer nodes (§5) are convex combinations of 9 old nodes, with the
 //! three sectors a stencil reads picked once per sector and the stencils
 //! unrolled into constants.
 //!
-//! Memory: the `72n` transformed weights (capacity [`MAX_VALENCE`]: 792
-//! scalars, 3.2 KiB for `f32`) live in the rule, built once per table and
-//! shared by every cap of that valence; the dense [`EgSubdivision::step`]
-//! needs none, so small firmware keeps using it.
+//! Memory: the `72n` transformed weights live in the rule, in arrays sized
+//! for [`MAX_VALENCE`] (864 scalars, and 72 roots: 3,840 B for `f32`,
+//! 7,584 B for `f64`), built once per table and shared by every cap of that
+//! valence; the dense [`EgSubdivision::step`] needs none, so small firmware
+//! keeps using it.
 //!
 //! [`EgSubdivision::step`]: super::EgSubdivision::step
 
