@@ -227,7 +227,10 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         }
         let [a, b] = &mut self.nets;
         let (cur, out) = if self.flip { (&*b, a) } else { (&*a, b) };
-        if !rule.refine(cur, out)? {
+        if cannot_overflow(cur) {
+            rule.refine(cur, out)?;
+        } else {
+            // As `step`: decided without writing, with `rule`'s table.
             let table = Rule::Eg(rule.table());
             if !refines_finite(cur, table)? {
                 return Err(Error::NonFinite);
