@@ -1,22 +1,132 @@
-//! `MeshInput`: a polygon mesh as the user gives it — vertex positions and
-//! faces as lists of 0-based vertex indices, counter-clockwise about the
-//! outward normal.
+//! `MeshInput`: a polygon mesh as the user gives it — vertex positions, faces
+//! as lists of 0-based vertex indices (counter-clockwise about the outward
+//! normal), and OpenSubdiv's subdivision tags ([`SubdivTags`]).
 
+use alloc::string::String;
 use alloc::vec::Vec;
 
-/// A polygon mesh: positions and faces (0-based indices, any polygon size).
-/// Nothing is checked here; [`crate::Topology::new`] validates.
+/// A polygon mesh: positions, faces (0-based indices, any polygon size) and
+/// tags. Nothing is checked here; the analysis validates.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshInput {
     /// Vertex positions.
     pub vertices: Vec<[f64; 3]>,
     /// Faces, each a list of vertex indices, counter-clockwise.
     pub faces: Vec<Vec<u32>>,
+    /// Creases, corners, holes and the boundary rule (none by default).
+    pub tags: SubdivTags,
 }
 
 impl MeshInput {
-    /// A mesh from its parts.
+    /// A mesh from its parts, without tags.
     pub fn new(vertices: Vec<[f64; 3]>, faces: Vec<Vec<u32>>) -> Self {
-        MeshInput { vertices, faces }
+        MeshInput {
+            vertices,
+            faces,
+            tags: SubdivTags::default(),
+        }
+    }
+}
+
+/// OpenSubdiv's boundary interpolation (`Sdc::Options::VtxBoundaryInterpolation`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BoundaryInterpolation {
+    /// `VTX_BOUNDARY_NONE`: faces with a boundary vertex are holes.
+    None,
+    /// `VTX_BOUNDARY_EDGE_ONLY`: boundary edges are infinitely sharp.
+    EdgeOnly,
+    /// `VTX_BOUNDARY_EDGE_AND_CORNER`: boundary edges infinitely sharp, and a
+    /// vertex with one face an infinitely sharp corner (the default).
+    #[default]
+    EdgeAndCorner,
+}
+
+impl BoundaryInterpolation {
+    /// The name used on the command line and in JSON.
+    pub fn id(self) -> &'static str {
+        match self {
+            BoundaryInterpolation::None => "none",
+            BoundaryInterpolation::EdgeOnly => "edge-only",
+            BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
+        }
+    }
+
+    /// Inverse of [`Self::id`].
+    pub fn from_id(s: &str) -> Option<Self> {
+        match s {
+            "none" => Some(BoundaryInterpolation::None),
+            "edge-only" => Some(BoundaryInterpolation::EdgeOnly),
+            "edge-and-corner" => Some(BoundaryInterpolation::EdgeAndCorner),
+            _ => None,
+        }
+    }
+}
+
+/// OpenSubdiv's creasing method (`Sdc::Options::CreasingMethod`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CreaseMethod {
+    /// `CREASE_UNIFORM` ("normal" in shape files): sharpness − 1 per level.
+    #[default]
+    Uniform,
+    /// `CREASE_CHAIKIN`: a child edge's sharpness blends in the mean of the
+    /// other semi-sharp edges at its end vertex.
+    Chaikin,
+}
+
+impl CreaseMethod {
+    /// The name used on the command line, in JSON and in shape files.
+    pub fn id(self) -> &'static str {
+        match self {
+            CreaseMethod::Uniform => "normal",
+            CreaseMethod::Chaikin => "chaikin",
+        }
+    }
+}
+
+/// An edge sharpness: the edge between two vertices (either order).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeCrease {
+    /// The edge's vertices (0-based).
+    pub vertices: [u32; 2],
+    /// Sharpness (OpenSubdiv reads it as `f32`; ≥ 10 is infinitely sharp).
+    pub sharpness: f32,
+}
+
+/// A vertex sharpness (a corner).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexCorner {
+    /// The vertex (0-based).
+    pub vertex: u32,
+    /// Sharpness (`f32`; ≥ 10 is infinitely sharp).
+    pub sharpness: f32,
+}
+
+/// OpenSubdiv's subdivision tags: what its shape files give as `t` lines and
+/// `Far::TopologyDescriptor` as creases, corners and holes.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SubdivTags {
+    /// Edge sharpness. A later entry for the same edge replaces an earlier one.
+    pub creases: Vec<EdgeCrease>,
+    /// Vertex sharpness. A later entry for the same vertex replaces an earlier one.
+    pub corners: Vec<VertexCorner>,
+    /// Faces that are holes (0-based): no surface over them; their
+    /// neighbours' surface is unchanged.
+    pub holes: Vec<u32>,
+    /// The boundary rule.
+    pub boundary: BoundaryInterpolation,
+    /// The creasing method.
+    pub crease_method: CreaseMethod,
+    /// Tags read but not applied (name and 1-based line), for the summary.
+    pub ignored: Vec<(String, usize)>,
+}
+
+impl SubdivTags {
+    /// No crease, corner or hole and the default rules: the mesh is a plain
+    /// Catmull-Clark control mesh.
+    pub fn is_plain(&self) -> bool {
+        self.creases.iter().all(|c| !(c.sharpness > 0.0))
+            && self.corners.iter().all(|c| !(c.sharpness > 0.0))
+            && self.holes.is_empty()
+            && self.boundary == BoundaryInterpolation::EdgeAndCorner
     }
 }

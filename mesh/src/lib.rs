@@ -31,7 +31,9 @@ pub mod topology;
 
 pub use error::MeshError;
 pub use evaluate::{CapRecord, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink};
-pub use input::MeshInput;
+pub use input::{
+    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, VertexCorner,
+};
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
 pub use stencil::StencilTable;
 pub use topology::Topology;
