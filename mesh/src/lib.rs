@@ -26,6 +26,7 @@ pub mod refine;
 pub mod samples;
 pub mod shade;
 pub mod stencil;
+pub mod tags;
 pub mod tessellate;
 pub mod topology;
 

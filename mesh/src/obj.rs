@@ -1,24 +1,58 @@
-//! Wavefront OBJ reader: vertex positions and polygon faces, nothing else.
+//! Wavefront OBJ reader: vertex positions, polygon faces and OpenSubdiv's
+//! subdivision tags, nothing else.
 //!
 //! Read: `v x y z [w …]` (only `x y z` kept; further numbers — a `w`, or the
-//! `r g b` some tools append — must be numbers and are ignored) and
+//! `r g b` some tools append — must be numbers and are ignored),
 //! `f a b c …` with corners written `i`, `i/t`, `i//n` or `i/t/n`, 1-based or
 //! negative (relative to the vertices read so far, `-1` being the last), any
-//! polygon size. Lines may end in `\r\n`; `#` starts a comment; a line ending
-//! in `\` continues on the next one. Every other statement (`vt`, `vn`, `vp`,
-//! `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`, …) is ignored.
+//! polygon size, and tag lines (below). Lines may end in `\r\n`; `#` starts a
+//! comment; a line ending in `\` continues on the next one. Every other
+//! statement (`vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`,
+//! …) is ignored.
 //!
-//! Checked here, in this order: the syntax of the whole text
-//! ([`MeshError::Parse`], first offending line), then the vertex indices
-//! ([`MeshError::IndexOutOfRange`], first offending face and corner; a
-//! positive index may refer to a vertex defined later in the file). Not
-//! checked here: finiteness (`1e999` reads as ∞ and is kept; the topology
-//! reports [`MeshError::NonFinite`]), face sizes, repeated vertices,
-//! manifoldness — all [`crate::Topology::new`]'s job. No input makes the
-//! reader panic.
+//! Tags are OpenSubdiv's shape-file lines `t NAME nint/nfloat/nstring`
+//! followed by that many integers, then numbers, then strings, as its
+//! regression tools read them (`regression/common/shape_utils.cpp`,
+//! `Shape::tag::parseTag`) and apply them to the refiner
+//! (`regression/common/far_utils.h`). Indices in tags are 0-based (unlike
+//! `f` lines: OpenSubdiv passes them to the refiner unchanged), sharpness is
+//! an `f32`:
+//!
+//! - `crease`: vertex pairs `a0 b0 a1 b1 …`, each an edge of the mesh; one
+//!   sharpness for all of them, or (far_utils.h indexes the floats by the
+//!   pair's first integer) edge `k`'s sharpness at float `2k`, so `2·edges −
+//!   1` or `2·edges` floats;
+//! - `corner`: vertices, one sharpness for all or one per vertex;
+//! - `hole`: face indices (0-based, in `f` order);
+//! - `interpolateboundary`: one integer, RenderMan's numbering: 0 none,
+//!   1 edge-and-corner, 2 edge-only (without the tag: edge-and-corner,
+//!   [`BoundaryInterpolation`]'s default, where far_utils.h would start
+//!   from edge-only);
+//! - `creasemethod`: one string, `normal` or `chaikin`.
+//!
+//! A later `interpolateboundary` or `creasemethod` replaces an earlier one.
+//! Any other tag name (`smoothtriangles`, `facevaryinginterpolateboundary`,
+//! `facevaryingpropagatecorners`, `vertexedit`, …) is syntax-checked and
+//! listed in [`SubdivTags::ignored`] with its line, not applied. Where
+//! OpenSubdiv's tools would print a warning and go on (a count, value or
+//! string they do not expect, a missing edge) or clamp (a negative
+//! sharpness), this reader rejects the line.
+//!
+//! Checked here, in this order: the syntax of the whole text, tag lines
+//! included ([`MeshError::Parse`], first offending line), then the face
+//! vertex indices ([`MeshError::IndexOutOfRange`], first offending face and
+//! corner; a positive index may refer to a vertex defined later in the file),
+//! then the tags' indices (vertices, edges, faces; [`MeshError::Parse`]
+//! naming the first offending tag line; see [`crate::tags`]). Not checked
+//! here: finiteness (`1e999` reads as ∞ and is kept; the topology reports
+//! [`MeshError::NonFinite`]), face sizes, repeated vertices, manifoldness —
+//! all [`crate::Topology::new`]'s job. No input makes the reader panic.
 
 use crate::error::MeshError;
-use crate::input::MeshInput;
+use crate::input::{
+    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, VertexCorner,
+};
+use crate::tags::TagCheck;
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
@@ -33,13 +67,11 @@ fn strip_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
-/// Reads the vertices and faces of a Wavefront OBJ text; indices become
-/// 0-based. See the module doc for what is read, ignored and checked.
+/// Reads the vertices, faces and subdivision tags of a Wavefront OBJ text;
+/// face indices become 0-based. See the module doc for what is read, ignored
+/// and checked.
 pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
-    let mut vertices: Vec<[f64; 3]> = Vec::new();
-    // Resolved 0-based indices, possibly out of range; checked at the end.
-    let mut corners: Vec<i64> = Vec::new();
-    let mut face_ends: Vec<usize> = Vec::new();
+    let mut reader = Reader::default();
     let mut joined = String::new();
     let mut statement_line = 0usize;
     let mut continuing = false;
@@ -70,26 +102,21 @@ pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
             joined.push_str(raw);
             &joined
         };
-        statement(
-            line,
-            statement_line,
-            &mut vertices,
-            &mut corners,
-            &mut face_ends,
-        )?;
+        reader.statement(line, statement_line)?;
     }
     if continuing {
         // The text ended on a continuation: the statement is what was read.
         let line = core::mem::take(&mut joined);
-        statement(
-            &line,
-            statement_line,
-            &mut vertices,
-            &mut corners,
-            &mut face_ends,
-        )?;
+        reader.statement(&line, statement_line)?;
     }
 
+    let Reader {
+        vertices,
+        corners,
+        face_ends,
+        mut tags,
+        pending,
+    } = reader;
     let nv = vertices.len();
     let mut faces: Vec<Vec<u32>> = Vec::with_capacity(face_ends.len());
     let mut start = 0usize;
@@ -108,78 +135,308 @@ pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
         faces.push(list);
         start = end;
     }
-    Ok(MeshInput::new(vertices, faces))
+
+    // Tag indices, in line order, now that every vertex and face is known.
+    let check = TagCheck::new(nv, &faces);
+    for p in pending {
+        let error = |message: String| MeshError::Parse {
+            line: p.line,
+            message: format!("tag {}: {message}", p.name),
+        };
+        match p.values {
+            Pending::Creases(list) => {
+                for (a, b, sharpness) in list {
+                    let vertices = check.crease(a, b).map_err(error)?;
+                    tags.creases.push(EdgeCrease {
+                        vertices,
+                        sharpness,
+                    });
+                }
+            }
+            Pending::Corners(list) => {
+                for (v, sharpness) in list {
+                    let vertex = check.corner(v).map_err(error)?;
+                    tags.corners.push(VertexCorner { vertex, sharpness });
+                }
+            }
+            Pending::Holes(list) => {
+                for f in list {
+                    tags.holes.push(check.hole(f).map_err(error)?);
+                }
+            }
+        }
+    }
+    Ok(MeshInput {
+        vertices,
+        faces,
+        tags,
+    })
 }
 
-/// One logical line, comments removed.
-fn statement(
-    line: &str,
-    line_no: usize,
-    vertices: &mut Vec<[f64; 3]>,
-    corners: &mut Vec<i64>,
-    face_ends: &mut Vec<usize>,
-) -> Result<(), MeshError> {
-    let mut tokens = line.split_whitespace();
-    let Some(keyword) = tokens.next() else {
-        return Ok(());
-    };
-    let error = |message: String| MeshError::Parse {
-        line: line_no,
-        message,
-    };
-    match keyword {
-        "v" => {
-            let mut p = [0.0f64; 3];
-            let mut count = 0usize;
-            for token in tokens {
-                let value: f64 = token
-                    .parse()
-                    .map_err(|_| error(format!("vertex: `{}` is not a number", clip(token))))?;
+/// What has been read so far.
+#[derive(Default)]
+struct Reader {
+    vertices: Vec<[f64; 3]>,
+    /// Resolved 0-based indices, possibly out of range; checked at the end.
+    corners: Vec<i64>,
+    face_ends: Vec<usize>,
+    /// Boundary rule, creasing method and ignored tags (applied as read);
+    /// creases, corners and holes are filled in at the end from `pending`.
+    tags: SubdivTags,
+    pending: Vec<PendingTag>,
+}
+
+/// A `crease`, `corner` or `hole` tag whose indices are checked at the end.
+struct PendingTag {
+    line: usize,
+    name: &'static str,
+    values: Pending,
+}
+
+enum Pending {
+    /// Vertex pairs and their sharpness.
+    Creases(Vec<(i64, i64, f32)>),
+    /// Vertices and their sharpness.
+    Corners(Vec<(i64, f32)>),
+    /// Faces.
+    Holes(Vec<i64>),
+}
+
+impl Reader {
+    /// One logical line, comments removed.
+    fn statement(&mut self, line: &str, line_no: usize) -> Result<(), MeshError> {
+        let mut tokens = line.split_whitespace();
+        let Some(keyword) = tokens.next() else {
+            return Ok(());
+        };
+        let error = |message: String| MeshError::Parse {
+            line: line_no,
+            message,
+        };
+        match keyword {
+            "v" => {
+                let mut p = [0.0f64; 3];
+                let mut count = 0usize;
+                for token in tokens {
+                    let value: f64 = token
+                        .parse()
+                        .map_err(|_| error(format!("vertex: `{}` is not a number", clip(token))))?;
+                    if count < 3 {
+                        p[count] = value;
+                    }
+                    count += 1;
+                }
                 if count < 3 {
-                    p[count] = value;
+                    return Err(error(format!("vertex: needs 3 coordinates, found {count}")));
                 }
-                count += 1;
+                self.vertices.push(p);
             }
-            if count < 3 {
-                return Err(error(format!("vertex: needs 3 coordinates, found {count}")));
-            }
-            vertices.push(p);
-        }
-        "f" => {
-            let nv = vertices.len() as i64;
-            for token in tokens {
-                let mut parts = token.split('/');
-                let first = parts.next().unwrap_or("");
-                let index = parse_index(first).ok_or_else(|| {
-                    error(format!("face: `{}` is not a vertex index", clip(token)))
-                })?;
-                // Texture and normal indices are ignored but must be indices.
-                let mut extra = 0;
-                for part in parts {
-                    extra += 1;
-                    if extra > 2 || (!part.is_empty() && parse_index(part).is_none()) {
-                        return Err(error(format!(
-                            "face: `{}` is not a corner (i, i/t, i//n or i/t/n)",
-                            clip(token)
-                        )));
+            "f" => {
+                let nv = self.vertices.len() as i64;
+                for token in tokens {
+                    let mut parts = token.split('/');
+                    let first = parts.next().unwrap_or("");
+                    let index = parse_index(first).ok_or_else(|| {
+                        error(format!("face: `{}` is not a vertex index", clip(token)))
+                    })?;
+                    // Texture and normal indices are ignored but must be indices.
+                    let mut extra = 0;
+                    for part in parts {
+                        extra += 1;
+                        if extra > 2 || (!part.is_empty() && parse_index(part).is_none()) {
+                            return Err(error(format!(
+                                "face: `{}` is not a corner (i, i/t, i//n or i/t/n)",
+                                clip(token)
+                            )));
+                        }
                     }
+                    let resolved = match index {
+                        0 => {
+                            return Err(error(String::from(
+                                "face: index 0 (OBJ indices start at 1)",
+                            )))
+                        }
+                        i if i > 0 => i - 1,
+                        i => nv.saturating_add(i),
+                    };
+                    self.corners.push(resolved);
                 }
-                let resolved = match index {
-                    0 => {
-                        return Err(error(String::from(
-                            "face: index 0 (OBJ indices start at 1)",
-                        )))
-                    }
-                    i if i > 0 => i - 1,
-                    i => nv.saturating_add(i),
-                };
-                corners.push(resolved);
+                self.face_ends.push(self.corners.len());
             }
-            face_ends.push(corners.len());
+            "t" => self.tag(tokens, line_no).map_err(error)?,
+            _ => {}
         }
-        _ => {}
+        Ok(())
     }
-    Ok(())
+
+    /// A tag line `t NAME nint/nfloat/nstring ints… floats… strings…`
+    /// (OpenSubdiv's `Shape::tag::parseTag`), applied as its
+    /// `regression/common/far_utils.h` applies it; see the module doc.
+    fn tag<'a>(
+        &mut self,
+        mut tokens: impl Iterator<Item = &'a str>,
+        line: usize,
+    ) -> Result<(), String> {
+        let Some(name) = tokens.next() else {
+            return Err(String::from("tag: needs a name and nint/nfloat/nstring"));
+        };
+        let shown = clip(name);
+        let counts = tokens
+            .next()
+            .ok_or_else(|| format!("tag {shown}: needs nint/nfloat/nstring after the name"))?;
+        let bad_counts = || format!("tag {shown}: `{}` is not nint/nfloat/nstring", clip(counts));
+        let mut parts = counts.split('/');
+        let mut count = || -> Result<usize, String> {
+            let part = parts.next().ok_or_else(bad_counts)?;
+            if part.is_empty() || !part.bytes().all(|b| b.is_ascii_digit()) {
+                return Err(bad_counts());
+            }
+            part.parse::<usize>().map_err(|_| bad_counts())
+        };
+        let (ni, nf, ns) = (count()?, count()?, count()?);
+        if parts.next().is_some() {
+            return Err(bad_counts());
+        }
+        let values: Vec<&str> = tokens.collect();
+        let announced = ni.checked_add(nf).and_then(|n| n.checked_add(ns));
+        if announced != Some(values.len()) {
+            return Err(format!(
+                "tag {shown}: {ni}/{nf}/{ns} announces {} values, the line has {}",
+                announced.map_or_else(|| String::from("too many"), |n| format!("{n}")),
+                values.len()
+            ));
+        }
+        let mut ints = Vec::with_capacity(ni);
+        for token in &values[..ni] {
+            ints.push(
+                parse_index(token)
+                    .ok_or_else(|| format!("tag {shown}: `{}` is not an integer", clip(token)))?,
+            );
+        }
+        let mut floats = Vec::with_capacity(nf);
+        for token in &values[ni..ni + nf] {
+            let value: f64 = token
+                .parse()
+                .map_err(|_| format!("tag {shown}: `{}` is not a number", clip(token)))?;
+            floats.push(value);
+        }
+        let strings = &values[ni + nf..];
+        let only = |want: (bool, bool, bool), what: &str| -> Result<(), String> {
+            let wrong = (ni > 0 && !want.0) || (nf > 0 && !want.1) || (ns > 0 && !want.2);
+            if wrong {
+                Err(format!("tag {name}: takes {what}, got {ni}/{nf}/{ns}"))
+            } else {
+                Ok(())
+            }
+        };
+        let sharpness = |s: f64| TagCheck::sharpness(s).map_err(|m| format!("tag {name}: {m}"));
+        match name {
+            "crease" => {
+                only(
+                    (true, true, false),
+                    "vertex pairs and sharpness (no strings)",
+                )?;
+                if ni % 2 != 0 {
+                    return Err(format!("tag crease: {ni} vertex indices do not make pairs"));
+                }
+                let edges = ni / 2;
+                // far_utils.h: one float for every edge, else edge k (ints
+                // 2k, 2k+1) takes float 2k — the float at its first vertex's
+                // position. Anything else would make it read past the floats.
+                let per_int = edges > 0 && (nf == 2 * edges - 1 || nf == 2 * edges);
+                if !(nf == 1 || per_int || (edges == 0 && nf == 0)) {
+                    return Err(format!(
+                        "tag crease: {nf} sharpness values for {edges} edge(s); OpenSubdiv \
+                         reads one for all edges, or edge k's at float 2k (so {} or {})",
+                        2 * edges.max(1) - 1,
+                        2 * edges.max(1)
+                    ));
+                }
+                let mut list = Vec::with_capacity(edges);
+                for k in 0..edges {
+                    let s = if nf == 1 { floats[0] } else { floats[2 * k] };
+                    list.push((ints[2 * k], ints[2 * k + 1], sharpness(s)?));
+                }
+                for &s in &floats {
+                    sharpness(s)?;
+                }
+                self.pending.push(PendingTag {
+                    line,
+                    name: "crease",
+                    values: Pending::Creases(list),
+                });
+            }
+            "corner" => {
+                only((true, true, false), "vertices and sharpness (no strings)")?;
+                // far_utils.h: one float for every vertex, else vertex j takes float j.
+                if !(nf == 1 || nf == ni) {
+                    return Err(format!(
+                        "tag corner: {nf} sharpness values for {ni} vertices; OpenSubdiv \
+                         reads one for all vertices or one per vertex"
+                    ));
+                }
+                let mut list = Vec::with_capacity(ni);
+                for (j, &v) in ints.iter().enumerate() {
+                    let s = if nf == 1 { floats[0] } else { floats[j] };
+                    list.push((v, sharpness(s)?));
+                }
+                for &s in &floats {
+                    sharpness(s)?;
+                }
+                self.pending.push(PendingTag {
+                    line,
+                    name: "corner",
+                    values: Pending::Corners(list),
+                });
+            }
+            "hole" => {
+                only((true, false, false), "face indices only")?;
+                self.pending.push(PendingTag {
+                    line,
+                    name: "hole",
+                    values: Pending::Holes(ints),
+                });
+            }
+            "interpolateboundary" => {
+                only((true, false, false), "one integer")?;
+                if ni != 1 {
+                    return Err(format!(
+                        "tag interpolateboundary: takes one integer, got {ni}"
+                    ));
+                }
+                // The RenderMan numbering, as far_utils.h's GetSdcOptions reads it.
+                self.tags.boundary = match ints[0] {
+                    0 => BoundaryInterpolation::None,
+                    1 => BoundaryInterpolation::EdgeAndCorner,
+                    2 => BoundaryInterpolation::EdgeOnly,
+                    other => {
+                        return Err(format!(
+                            "tag interpolateboundary: {other} is not 0 (none), \
+                             1 (edge-and-corner) or 2 (edge-only)"
+                        ))
+                    }
+                };
+            }
+            "creasemethod" => {
+                only((false, false, true), "one string")?;
+                if ns != 1 {
+                    return Err(format!("tag creasemethod: takes one string, got {ns}"));
+                }
+                self.tags.crease_method = match strings[0] {
+                    "normal" => CreaseMethod::Uniform,
+                    "chaikin" => CreaseMethod::Chaikin,
+                    other => {
+                        return Err(format!(
+                            "tag creasemethod: `{}` is not `normal` or `chaikin`",
+                            clip(other)
+                        ))
+                    }
+                };
+            }
+            _ => self.tags.ignored.push((String::from(name), line)),
+        }
+        Ok(())
+    }
 }
 
 /// An integer index (optionally signed); `None` if empty or not an integer
@@ -370,6 +627,244 @@ mod tests {
         assert!(!looks_like_json(""));
     }
 
+    /// A 2×1 grid of quads: vertices 0 1 2 / 3 4 5, faces 0 and 1.
+    const STRIP: &str = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n\
+                         f 1 2 5 4\nf 2 3 6 5\n";
+
+    fn with_tags(tags: &str) -> Result<MeshInput, MeshError> {
+        parse_obj(&format!("{STRIP}{tags}"))
+    }
+
+    /// The 1-based line of a tag appended to [`STRIP`] as its `k`-th line.
+    fn tag_line(k: usize) -> usize {
+        STRIP.lines().count() + k
+    }
+
+    fn crease(a: u32, b: u32, sharpness: f32) -> EdgeCrease {
+        EdgeCrease {
+            vertices: [a, b],
+            sharpness,
+        }
+    }
+
+    #[test]
+    fn no_tags_means_default_tags() {
+        let m = with_tags("").unwrap();
+        assert_eq!(m.tags, SubdivTags::default());
+        assert!(m.tags.is_plain());
+    }
+
+    #[test]
+    fn crease_tags_pair_vertices_with_one_or_every_other_float() {
+        // One float for every pair.
+        let m = with_tags("t crease 4/1/0 0 1 1 4 2.5\n").unwrap();
+        assert_eq!(m.tags.creases, vec![crease(0, 1, 2.5), crease(1, 4, 2.5)]);
+        // Indices are 0-based: `1 4` is the edge between the 2nd and 5th `v`.
+        assert_eq!(m.vertices[4], [1.0, 1.0, 0.0]);
+        // Per edge: edge k's sharpness is float 2k (far_utils.h's indexing).
+        let m = with_tags("t crease 4/3/0 0 1 4 5 1.0 9.0 3.0\n").unwrap();
+        assert_eq!(m.tags.creases, vec![crease(0, 1, 1.0), crease(4, 5, 3.0)]);
+        let m = with_tags("t crease 4/4/0 0 1 4 5 1.0 9.0 3.0 9.0\n").unwrap();
+        assert_eq!(m.tags.creases, vec![crease(0, 1, 1.0), crease(4, 5, 3.0)]);
+        // One edge, two floats: the first.
+        let m = with_tags("t crease 2/2/0 2 1 0.5 7\n").unwrap();
+        assert_eq!(m.tags.creases, vec![crease(2, 1, 0.5)]);
+        // Several lines accumulate; the order is kept; 10 and ∞ are accepted.
+        let m = with_tags("t crease 2/1/0 0 3 10\nt crease 2/1/0 3 0 1e999\n").unwrap();
+        assert_eq!(
+            m.tags.creases,
+            vec![crease(0, 3, 10.0), crease(3, 0, f32::INFINITY)]
+        );
+        // Zero pairs: nothing.
+        assert!(with_tags("t crease 0/1/0 1\n")
+            .unwrap()
+            .tags
+            .creases
+            .is_empty());
+        // Tags may come before the vertices and faces they name.
+        let m = parse_obj(&format!("t crease 2/1/0 0 1 4\n{STRIP}")).unwrap();
+        assert_eq!(m.tags.creases, vec![crease(0, 1, 4.0)]);
+    }
+
+    #[test]
+    fn corner_hole_boundary_and_creasemethod_tags() {
+        let m = with_tags(
+            "t corner 2/1/0 0 5 3\n\
+             t corner 2/2/0 2 3 1.5 0\n\
+             t hole 1/0/0 1\n\
+             t interpolateboundary 1/0/0 2\n\
+             t creasemethod 0/0/1 chaikin\n",
+        )
+        .unwrap();
+        let corner = |vertex, sharpness| VertexCorner { vertex, sharpness };
+        assert_eq!(
+            m.tags.corners,
+            vec![
+                corner(0, 3.0),
+                corner(5, 3.0),
+                corner(2, 1.5),
+                corner(3, 0.0)
+            ]
+        );
+        assert_eq!(m.tags.holes, vec![1]);
+        assert_eq!(m.tags.boundary, BoundaryInterpolation::EdgeOnly);
+        assert_eq!(m.tags.crease_method, CreaseMethod::Chaikin);
+        assert!(m.tags.ignored.is_empty());
+        let boundary = |n: u32| {
+            with_tags(&format!("t interpolateboundary 1/0/0 {n}\n"))
+                .unwrap()
+                .tags
+                .boundary
+        };
+        assert_eq!(boundary(0), BoundaryInterpolation::None);
+        assert_eq!(boundary(1), BoundaryInterpolation::EdgeAndCorner);
+        assert_eq!(boundary(2), BoundaryInterpolation::EdgeOnly);
+        // The last one wins.
+        let m = with_tags(
+            "t interpolateboundary 1/0/0 0\nt interpolateboundary 1/0/0 1\n\
+             t creasemethod 0/0/1 chaikin\nt creasemethod 0/0/1 normal\n",
+        )
+        .unwrap();
+        assert_eq!(m.tags.boundary, BoundaryInterpolation::EdgeAndCorner);
+        assert_eq!(m.tags.crease_method, CreaseMethod::Uniform);
+    }
+
+    #[test]
+    fn tags_not_applied_are_listed_with_their_line() {
+        let m = with_tags(
+            "t smoothtriangles 0/0/1 smooth\n\
+             # a comment line\n\
+             t facevaryingpropagatecorners 1/0/0 1\n\
+             t vertexedit 3/2/2 1 2 3 0.5 1 value set\n\
+             t\tsomethingnew 0/0/0\n",
+        )
+        .unwrap();
+        assert_eq!(
+            m.tags.ignored,
+            vec![
+                ("smoothtriangles".to_string(), tag_line(1)),
+                ("facevaryingpropagatecorners".to_string(), tag_line(3)),
+                ("vertexedit".to_string(), tag_line(4)),
+                ("somethingnew".to_string(), tag_line(5)),
+            ]
+        );
+        assert!(m.tags.is_plain());
+    }
+
+    #[test]
+    fn malformed_tags_name_their_line() {
+        let cases: &[(&str, &str)] = &[
+            ("t", "needs a name"),
+            ("t crease", "needs nint/nfloat/nstring"),
+            ("t crease 2/1 0 1 2", "is not nint/nfloat/nstring"),
+            ("t crease 2/1/0/0 0 1 2", "is not nint/nfloat/nstring"),
+            ("t crease 2/-1/0 0 1 2", "is not nint/nfloat/nstring"),
+            ("t crease a/1/0 0 1 2", "is not nint/nfloat/nstring"),
+            ("t crease 2/1/0 0 1", "announces 3 values, the line has 2"),
+            (
+                "t crease 2/1/0 0 1 2 3",
+                "announces 3 values, the line has 4",
+            ),
+            (
+                "t crease 99999999999999999999/0/0 1",
+                "is not nint/nfloat/nstring",
+            ),
+            (
+                "t crease 18446744073709551615/1/0 1",
+                "announces too many values",
+            ),
+            ("t crease 2/1/0 0 x 2", "`x` is not an integer"),
+            ("t crease 2/1/0 0 1.5 2", "`1.5` is not an integer"),
+            ("t crease 2/1/0 0 1 sharp", "`sharp` is not a number"),
+            ("t crease 2/1/0 0 1 -1", "sharpness -1 is negative"),
+            ("t crease 2/1/0 0 1 nan", "sharpness is NaN"),
+            ("t crease 3/1/0 0 1 2 2", "do not make pairs"),
+            ("t crease 2/0/0 0 1", "0 sharpness values for 1 edge(s)"),
+            (
+                "t crease 4/2/0 0 1 1 2 1 2",
+                "2 sharpness values for 2 edge(s)",
+            ),
+            ("t crease 2/1/1 0 1 2 x", "takes vertex pairs and sharpness"),
+            ("t corner 2/0/0 0 1", "0 sharpness values for 2 vertices"),
+            (
+                "t corner 3/2/0 0 1 2 1 1",
+                "2 sharpness values for 3 vertices",
+            ),
+            ("t corner 1/1/0 0 -2", "sharpness -2 is negative"),
+            ("t hole 1/1/0 0 1", "takes face indices only"),
+            ("t interpolateboundary 1/0/0 3", "3 is not 0 (none)"),
+            (
+                "t interpolateboundary 2/0/0 1 1",
+                "takes one integer, got 2",
+            ),
+            ("t interpolateboundary 0/0/0", "takes one integer, got 0"),
+            ("t interpolateboundary 0/0/1 edge", "takes one integer"),
+            (
+                "t creasemethod 0/0/1 smooth",
+                "`smooth` is not `normal` or `chaikin`",
+            ),
+            ("t creasemethod 0/0/0", "takes one string, got 0"),
+            (
+                "t creasemethod 0/0/2 normal chaikin",
+                "takes one string, got 2",
+            ),
+            ("t creasemethod 1/0/1 1 normal", "takes one string"),
+            // Unknown names are still syntax-checked.
+            (
+                "t smoothtriangles 0/0/1",
+                "announces 1 values, the line has 0",
+            ),
+            // Indices, checked once the whole mesh is read.
+            (
+                "t crease 2/1/0 0 6 1",
+                "tag crease: vertex 6 out of range (6 vertices)",
+            ),
+            ("t crease 2/1/0 -1 0 1", "vertex -1 out of range"),
+            (
+                "t crease 2/1/0 0 4 1",
+                "vertices 0 and 4 are not joined by an edge",
+            ),
+            ("t crease 2/1/0 1 1 1", "vertices 1 and 1 are not joined"),
+            ("t corner 1/1/0 6 1", "tag corner: vertex 6 out of range"),
+            ("t corner 1/1/0 -1 1", "vertex -1 out of range"),
+            ("t hole 1/0/0 2", "tag hole: face 2 out of range (2 faces)"),
+            ("t hole 1/0/0 -1", "face -1 out of range"),
+        ];
+        for (tag, needle) in cases {
+            // The bad tag is the second tag line, after a good one.
+            let text = format!("{STRIP}t corner 1/1/0 0 1\n{tag}\n");
+            let line = tag_line(2);
+            match parse_obj(&text) {
+                Err(MeshError::Parse { line: l, message }) => {
+                    assert_eq!(l, line, "{tag}: {message}");
+                    assert!(
+                        message.contains(needle),
+                        "{tag}: `{message}` lacks `{needle}`"
+                    );
+                }
+                other => panic!("{tag}: {other:?}"),
+            }
+        }
+        // The first bad tag line is named, in line order, also for index errors.
+        let e = with_tags("t hole 1/0/0 0\nt hole 1/0/0 5\nt corner 1/1/0 9 1\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "line {}: tag hole: face 5 out of range (2 faces)",
+                tag_line(2)
+            )
+        );
+        // Syntax errors anywhere come before tag index errors.
+        let e = with_tags("t hole 1/0/0 5\nv 1 x 0\n").unwrap_err();
+        assert!(matches!(e, MeshError::Parse { line, .. } if line == tag_line(2)));
+        // A continued tag line reports its first line.
+        let e = with_tags("t crease 2/1/0 \\\n 0 1 -3\n").unwrap_err();
+        assert!(matches!(e, MeshError::Parse { line, .. } if line == tag_line(1)));
+        // Face index errors come before tag index errors.
+        let e = with_tags("t hole 1/0/0 5\nf 1 2 99\n").unwrap_err();
+        assert!(matches!(e, MeshError::IndexOutOfRange { face: 2, .. }));
+    }
+
     #[test]
     fn arbitrary_bytes_never_panic() {
         // A small deterministic fuzz: random mixes of OBJ-ish fragments.
@@ -398,6 +893,14 @@ mod tests {
             "+",
             "vt",
             "99999999999999999999",
+            "t",
+            "crease",
+            "corner",
+            "hole",
+            "2/1/0",
+            "1/0/0",
+            "0/0/1",
+            "chaikin",
         ];
         let mut state = 0x2545_f491_4f6c_dd1du64;
         for _ in 0..3000 {
