@@ -95,6 +95,50 @@ impl ShapeScheme {
     }
 }
 
+/// Boundary rule of a mesh (OpenSubdiv's `VtxBoundaryInterpolation`),
+/// overriding the one the mesh file gives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BoundaryArg {
+    /// Faces with a boundary vertex are holes.
+    None,
+    /// Boundary edges infinitely sharp.
+    EdgeOnly,
+    /// Boundary edges infinitely sharp, vertices with one face infinitely
+    /// sharp corners.
+    EdgeAndCorner,
+}
+
+impl From<BoundaryArg> for capdiv_mesh::BoundaryInterpolation {
+    fn from(b: BoundaryArg) -> Self {
+        match b {
+            BoundaryArg::None => capdiv_mesh::BoundaryInterpolation::None,
+            BoundaryArg::EdgeOnly => capdiv_mesh::BoundaryInterpolation::EdgeOnly,
+            BoundaryArg::EdgeAndCorner => capdiv_mesh::BoundaryInterpolation::EdgeAndCorner,
+        }
+    }
+}
+
+/// Scheme of `surface`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SurfaceScheme {
+    /// C²PS at poles, EG at extraordinary points of valence 3 and 5,
+    /// Catmull-Clark caps elsewhere.
+    Default,
+    /// Catmull-Clark caps everywhere (`PlanOptions::catmull_clark`, as
+    /// `render --scheme catmull-clark` on a mesh).
+    CatmullClark,
+}
+
+impl SurfaceScheme {
+    /// The name as written on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            SurfaceScheme::Default => "default",
+            SurfaceScheme::CatmullClark => "catmull-clark",
+        }
+    }
+}
+
 /// Shading of `render` and `compare`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Shade {
@@ -136,6 +180,10 @@ pub struct PictureArgs {
     /// The PNG file to write.
     #[arg(short, long, value_name = "PATH")]
     pub output: PathBuf,
+    /// Meshes only: the boundary rule, overriding the file's [default: the
+    /// file's, else edge-and-corner].
+    #[arg(long, value_enum, value_name = "RULE")]
+    pub boundary: Option<BoundaryArg>,
 }
 
 /// `capdiv render`.
@@ -349,6 +397,13 @@ pub struct SurfaceArgs {
     /// Scalar type of the evaluation and of the printed numbers.
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     pub precision: Precision,
+    /// Caps: the default pipeline, or Catmull-Clark caps everywhere.
+    #[arg(long, value_enum, default_value_t = SurfaceScheme::Default)]
+    pub scheme: SurfaceScheme,
+    /// The boundary rule, overriding the file's [default: the file's, else
+    /// edge-and-corner].
+    #[arg(long, value_enum, value_name = "RULE")]
+    pub boundary: Option<BoundaryArg>,
     /// EG rule table for valence N (6..10), in the `spectrum --table` format;
     /// repeatable. Valences without a table get Catmull-Clark caps.
     #[arg(long = "eg-table", value_name = "N=FILE")]

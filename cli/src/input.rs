@@ -25,6 +25,14 @@
 //! ```
 //!
 //! 0-based vertex indices, faces counter-clockwise about the outward normal.
+//! Optional OpenSubdiv subdivision tags (0-based indices):
+//!
+//! ```json
+//! {"creases": [[a, b, sharpness], ...], "corners": [[v, sharpness], ...],
+//!  "holes": [f, ...], "boundary": "none" | "edge-only" | "edge-and-corner",
+//!  "crease_method": "normal" | "chaikin"}
+//! ```
+//!
 //! Unknown fields are rejected.
 
 use crate::error::CliError;
@@ -49,7 +57,8 @@ pub enum Input {
     Mesh(MeshJson),
 }
 
-/// `{"kind": "mesh", "vertices", "faces"}`.
+/// `{"kind": "mesh", "vertices", "faces"}` and the optional subdivision
+/// tags `creases`, `corners`, `holes`, `boundary`, `crease_method`.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshJson {
@@ -57,33 +66,140 @@ pub struct MeshJson {
     pub vertices: Vec<P3>,
     /// Faces: 0-based vertex indices, counter-clockwise.
     pub faces: Vec<Vec<i64>>,
+    /// Edge sharpness `[a, b, sharpness]`: 0-based vertices of an edge.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub creases: Vec<(i64, i64, f64)>,
+    /// Vertex sharpness `[v, sharpness]`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub corners: Vec<(i64, f64)>,
+    /// 0-based faces that are holes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub holes: Vec<i64>,
+    /// The boundary rule (default `edge-and-corner`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub boundary: Option<BoundaryJson>,
+    /// The creasing method (default `normal`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crease_method: Option<CreaseMethodJson>,
+    /// Tags an OBJ file had that are not applied (name, line); not part of
+    /// the JSON, carried so that a mesh read from OBJ keeps them.
+    #[serde(skip)]
+    pub ignored: Vec<(String, usize)>,
+}
+
+/// `"boundary"` of a JSON mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BoundaryJson {
+    /// [`capdiv_mesh::BoundaryInterpolation::None`].
+    None,
+    /// [`capdiv_mesh::BoundaryInterpolation::EdgeOnly`].
+    EdgeOnly,
+    /// [`capdiv_mesh::BoundaryInterpolation::EdgeAndCorner`].
+    EdgeAndCorner,
+}
+
+impl From<BoundaryJson> for capdiv_mesh::BoundaryInterpolation {
+    fn from(b: BoundaryJson) -> Self {
+        match b {
+            BoundaryJson::None => capdiv_mesh::BoundaryInterpolation::None,
+            BoundaryJson::EdgeOnly => capdiv_mesh::BoundaryInterpolation::EdgeOnly,
+            BoundaryJson::EdgeAndCorner => capdiv_mesh::BoundaryInterpolation::EdgeAndCorner,
+        }
+    }
+}
+
+impl From<capdiv_mesh::BoundaryInterpolation> for BoundaryJson {
+    fn from(b: capdiv_mesh::BoundaryInterpolation) -> Self {
+        match b {
+            capdiv_mesh::BoundaryInterpolation::None => BoundaryJson::None,
+            capdiv_mesh::BoundaryInterpolation::EdgeOnly => BoundaryJson::EdgeOnly,
+            capdiv_mesh::BoundaryInterpolation::EdgeAndCorner => BoundaryJson::EdgeAndCorner,
+        }
+    }
+}
+
+/// `"crease_method"` of a JSON mesh (OpenSubdiv's shape-file names).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum CreaseMethodJson {
+    /// [`capdiv_mesh::CreaseMethod::Uniform`].
+    Normal,
+    /// [`capdiv_mesh::CreaseMethod::Chaikin`].
+    Chaikin,
 }
 
 impl MeshJson {
-    /// The mesh crate's input; an index outside `0..vertices` is
-    /// [`capdiv_mesh::MeshError::IndexOutOfRange`] (first offending face).
-    pub fn to_mesh(&self) -> Result<capdiv_mesh::MeshInput, capdiv_mesh::MeshError> {
+    /// The mesh crate's input. A face index outside `0..vertices` is
+    /// [`capdiv_mesh::MeshError::IndexOutOfRange`] (first offending face); a
+    /// tag that names a missing vertex, edge or face, or has a negative
+    /// sharpness, is [`CliError::Schema`] naming the entry (checked by
+    /// [`capdiv_mesh::tags::TagCheck`], as for OBJ tags).
+    pub fn to_mesh(&self, source: &str) -> Result<capdiv_mesh::MeshInput, CliError> {
+        use capdiv_mesh::tags::TagCheck;
+        use capdiv_mesh::{CreaseMethod, EdgeCrease, SubdivTags, VertexCorner};
         let nv = self.vertices.len();
         let mut faces = Vec::with_capacity(self.faces.len());
         for (face, list) in self.faces.iter().enumerate() {
             let mut out = Vec::with_capacity(list.len());
             for &index in list {
                 if index < 0 || index as u64 >= nv as u64 || index > i64::from(u32::MAX) {
-                    return Err(capdiv_mesh::MeshError::IndexOutOfRange {
-                        face,
-                        index,
-                        vertices: nv,
+                    return Err(CliError::Mesh {
+                        source: source.to_string(),
+                        error: capdiv_mesh::MeshError::IndexOutOfRange {
+                            face,
+                            index,
+                            vertices: nv,
+                        },
                     });
                 }
                 out.push(index as u32);
             }
             faces.push(out);
         }
-        Ok(capdiv_mesh::MeshInput::new(self.vertices.clone(), faces))
+        let schema = |field: &str, k: usize, message: String| CliError::Schema {
+            source: source.to_string(),
+            message: format!("{field}[{k}]: {message}"),
+        };
+        let check = TagCheck::new(nv, &faces);
+        let mut tags = SubdivTags {
+            ignored: self.ignored.clone(),
+            ..Default::default()
+        };
+        for (k, &(a, b, s)) in self.creases.iter().enumerate() {
+            let sharpness = TagCheck::sharpness(s).map_err(|m| schema("creases", k, m))?;
+            let vertices = check.crease(a, b).map_err(|m| schema("creases", k, m))?;
+            tags.creases.push(EdgeCrease {
+                vertices,
+                sharpness,
+            });
+        }
+        for (k, &(v, s)) in self.corners.iter().enumerate() {
+            let sharpness = TagCheck::sharpness(s).map_err(|m| schema("corners", k, m))?;
+            let vertex = check.corner(v).map_err(|m| schema("corners", k, m))?;
+            tags.corners.push(VertexCorner { vertex, sharpness });
+        }
+        for (k, &f) in self.holes.iter().enumerate() {
+            tags.holes
+                .push(check.hole(f).map_err(|m| schema("holes", k, m))?);
+        }
+        if let Some(b) = self.boundary {
+            tags.boundary = b.into();
+        }
+        tags.crease_method = match self.crease_method {
+            None | Some(CreaseMethodJson::Normal) => CreaseMethod::Uniform,
+            Some(CreaseMethodJson::Chaikin) => CreaseMethod::Chaikin,
+        };
+        Ok(capdiv_mesh::MeshInput {
+            vertices: self.vertices.clone(),
+            faces,
+            tags,
+        })
     }
 
-    /// The JSON form of a mesh.
+    /// The JSON form of a mesh (tags at their defaults are left out).
     pub fn of(mesh: &capdiv_mesh::MeshInput) -> Self {
+        let t = &mesh.tags;
         MeshJson {
             vertices: mesh.vertices.clone(),
             faces: mesh
@@ -91,6 +207,27 @@ impl MeshJson {
                 .iter()
                 .map(|f| f.iter().map(|&i| i64::from(i)).collect())
                 .collect(),
+            creases: t
+                .creases
+                .iter()
+                .map(|c| {
+                    let [a, b] = c.vertices;
+                    (i64::from(a), i64::from(b), f64::from(c.sharpness))
+                })
+                .collect(),
+            corners: t
+                .corners
+                .iter()
+                .map(|c| (i64::from(c.vertex), f64::from(c.sharpness)))
+                .collect(),
+            holes: t.holes.iter().map(|&f| i64::from(f)).collect(),
+            boundary: (t.boundary != capdiv_mesh::BoundaryInterpolation::default())
+                .then(|| t.boundary.into()),
+            crease_method: match t.crease_method {
+                capdiv_mesh::CreaseMethod::Uniform => None,
+                capdiv_mesh::CreaseMethod::Chaikin => Some(CreaseMethodJson::Chaikin),
+            },
+            ignored: t.ignored.clone(),
         }
     }
 }

@@ -135,10 +135,7 @@ pub fn build(
             return Err(refuse("a 'polar' input"));
         }
         (Input::Mesh(m), s) => {
-            let mesh = m.to_mesh().map_err(|error| CliError::Mesh {
-                source: name.to_string(),
-                error,
-            })?;
+            let mesh = m.to_mesh(name)?;
             let cc = s == ShapeScheme::CatmullClark;
             let mut shape = mesh_shape(name, &mesh, depth, cc, None)?;
             shape.label = if cc { "Catmull-Clark" } else { "C2PS / EG" };
@@ -472,6 +469,29 @@ pub fn drawable(name: &str, shape: &Shape, depth: u32) -> Result<(), CliError> {
         )));
     }
     Ok(())
+}
+
+/// Sets a mesh input's boundary rule (`--boundary`); any other kind of input
+/// is [`CliError::WrongKind`].
+pub fn override_boundary(
+    name: &str,
+    input: &mut Input,
+    boundary: Option<crate::args::BoundaryArg>,
+) -> Result<(), CliError> {
+    let Some(b) = boundary else {
+        return Ok(());
+    };
+    match input {
+        Input::Mesh(m) => {
+            m.boundary = Some(capdiv_mesh::BoundaryInterpolation::from(b).into());
+            Ok(())
+        }
+        other => Err(CliError::WrongKind {
+            source: name.to_string(),
+            kind: other.kind(),
+            need: "--boundary needs a 'mesh' input (or a Wavefront OBJ)".into(),
+        }),
+    }
 }
 
 /// Reads any input: JSON of any kind (chosen by content), a Wavefront OBJ

@@ -10,11 +10,12 @@ use crate::args::CompareArgs;
 use crate::error::CliError;
 use crate::output::Sink;
 use crate::picture::draw;
-use crate::shape::{build, drawable, read_any, schemes_for, Shape};
+use crate::shape::{build, drawable, override_boundary, read_any, schemes_for, Shape};
 
 /// Runs the command.
 pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
-    let (name, input) = read_any(&args.picture.file)?;
+    let (name, mut input) = read_any(&args.picture.file)?;
+    override_boundary(&name, &mut input, args.picture.boundary)?;
     let shapes: Vec<Shape> = schemes_for(&input)
         .into_iter()
         .map(|s| build(&name, &input, Some(s), args.picture.depth))

@@ -8,7 +8,7 @@ use crate::args::{PictureArgs, RenderArgs, Shade};
 use crate::error::CliError;
 use crate::output::Sink;
 use crate::picture::{draw, png, Camera, Shading};
-use crate::shape::{build, drawable, read_any};
+use crate::shape::{build, drawable, override_boundary, read_any};
 
 /// The picture options as the drawing's.
 pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
@@ -38,7 +38,8 @@ pub fn png_bytes(pic: &crate::picture::Picture) -> Result<Vec<u8>, CliError> {
 
 /// Runs the command.
 pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
-    let (name, input) = read_any(&args.picture.file)?;
+    let (name, mut input) = read_any(&args.picture.file)?;
+    override_boundary(&name, &mut input, args.picture.boundary)?;
     let shape = build(&name, &input, args.scheme, args.picture.depth)?;
     drawable(&name, &shape, args.picture.depth)?;
     let (cam, shading) = camera(&args.picture);

@@ -21,7 +21,7 @@
 //! after the output has been written; exit status 0.
 
 use super::Outcome;
-use crate::args::{PatchFormat, Precision, SurfaceArgs};
+use crate::args::{PatchFormat, Precision, SurfaceArgs, SurfaceScheme};
 use crate::error::CliError;
 use crate::input::{parse, Input, Source};
 use crate::mesh::Mesh;
@@ -55,7 +55,10 @@ pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
 pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
     let tables = read_tables(&args.eg_table)?;
     let source = Source::read_text(&args.file)?;
-    let mesh = read_mesh(&source)?;
+    let mut mesh = read_mesh(&source)?;
+    if let Some(b) = args.boundary {
+        mesh.tags.boundary = b.into();
+    }
     let name = source.name.as_str();
     let (bytes, report) = match args.precision {
         Precision::F64 => produce::<f64>(name, &mesh, &tables, args, "f64", WELD_F64)?,
@@ -110,7 +113,7 @@ pub fn read_mesh(source: &Source) -> Result<MeshInput, CliError> {
     };
     if looks_like_json(&source.text) {
         match parse(&source.name, &source.text)? {
-            Input::Mesh(m) => m.to_mesh().map_err(mesh_err),
+            Input::Mesh(m) => m.to_mesh(&source.name),
             other => Err(CliError::WrongKind {
                 source: source.name.clone(),
                 kind: other.kind(),
@@ -130,7 +133,8 @@ fn produce<R: Scalar>(
     precision: &str,
     weld: f64,
 ) -> Result<(Vec<u8>, String), CliError> {
-    let surface = build::<R>(name, mesh, args.depth, tables, precision)?;
+    let cc = args.scheme == SurfaceScheme::CatmullClark;
+    let surface = build_scheme::<R>(name, mesh, args.depth, tables, precision, cc)?;
     let grid = args.grid as usize;
     Ok(match args.format {
         PatchFormat::Json => {
@@ -146,7 +150,9 @@ fn produce<R: Scalar>(
             // f32 output is welded where the f64 surface welds (see
             // `tessellate_surface`); f64 output needs no guide.
             let guide = if precision == "f32" {
-                Some(build::<f64>(name, mesh, args.depth, tables, "f64")?)
+                Some(build_scheme::<f64>(
+                    name, mesh, args.depth, tables, "f64", cc,
+                )?)
             } else {
                 None
             };
@@ -191,13 +197,27 @@ impl<R: Clone> SurfaceSink<R> for Collect<R> {
     }
 }
 
-/// Validates, analyses and evaluates `mesh` in `R` (positions cast).
+/// Validates, analyses and evaluates `mesh` in `R` (positions cast), the
+/// default scheme.
 pub fn build<R: Scalar>(
     name: &str,
     mesh: &MeshInput,
     depth: u32,
     tables: &[Table],
     precision: &str,
+) -> Result<Surface<R>, CliError> {
+    build_scheme(name, mesh, depth, tables, precision, false)
+}
+
+/// [`build`], with Catmull-Clark caps everywhere when `catmull_clark`
+/// (`--scheme catmull-clark`).
+pub fn build_scheme<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    depth: u32,
+    tables: &[Table],
+    precision: &str,
+    catmull_clark: bool,
 ) -> Result<Surface<R>, CliError> {
     let mesh_err = |error| CliError::Mesh {
         source: name.to_string(),
@@ -215,6 +235,7 @@ pub fn build<R: Scalar>(
         PlanOptions {
             depth,
             eg_tables,
+            catmull_clark,
             ..Default::default()
         },
     )
@@ -287,6 +308,13 @@ pub fn build<R: Scalar>(
         },
         depth,
         precision: precision.to_string(),
+        scheme: if catmull_clark {
+            SurfaceScheme::CatmullClark
+        } else {
+            SurfaceScheme::Default
+        }
+        .name(),
+        tags: TagSummary::of(&mesh.tags),
         patches,
         caps,
         refinement_steps: plan.steps.len(),
@@ -412,6 +440,10 @@ pub struct Summary {
     pub depth: u32,
     /// `f64` or `f32`.
     pub precision: String,
+    /// `--scheme`: `default` or `catmull-clark`.
+    pub scheme: &'static str,
+    /// The subdivision tags the analysis was given.
+    pub tags: TagSummary,
     /// Patches per kind.
     pub patches: PatchCounts,
     /// Caps per scheme and valence.
@@ -424,6 +456,77 @@ pub struct Summary {
     pub uncovered: Vec<FaceReason>,
     /// Wall-clock times (vary from run to run).
     pub times_ms: Times,
+}
+
+/// The subdivision tags of the input (after `--boundary`).
+#[derive(Clone, Debug, Serialize)]
+pub struct TagSummary {
+    /// Edge sharpness entries.
+    pub creases: usize,
+    /// Vertex sharpness entries.
+    pub corners: usize,
+    /// Hole faces.
+    pub holes: usize,
+    /// `none`, `edge-only` or `edge-and-corner`.
+    pub boundary: &'static str,
+    /// `normal` or `chaikin`.
+    pub crease_method: &'static str,
+    /// OBJ tags read but not applied, with their 1-based line.
+    pub ignored: Vec<IgnoredTag>,
+}
+
+/// An OBJ tag not applied.
+#[derive(Clone, Debug, Serialize)]
+pub struct IgnoredTag {
+    /// Its name.
+    pub name: String,
+    /// Its 1-based line.
+    pub line: usize,
+}
+
+impl TagSummary {
+    /// Counts and rules of `tags`.
+    pub fn of(tags: &capdiv_mesh::SubdivTags) -> Self {
+        TagSummary {
+            creases: tags.creases.len(),
+            corners: tags.corners.len(),
+            holes: tags.holes.len(),
+            boundary: tags.boundary.id(),
+            crease_method: tags.crease_method.id(),
+            ignored: tags
+                .ignored
+                .iter()
+                .map(|(name, line)| IgnoredTag {
+                    name: name.clone(),
+                    line: *line,
+                })
+                .collect(),
+        }
+    }
+
+    /// The summary line after `  tags         `.
+    fn text(&self, scheme: &str) -> String {
+        let ignored: Vec<String> = self
+            .ignored
+            .iter()
+            .map(|t| format!("{} (line {})", t.name, t.line))
+            .collect();
+        format!(
+            "{} crease(s), {} corner(s), {} hole(s); boundary {}, creasing {}; scheme {}; \
+             ignored tags: {}",
+            self.creases,
+            self.corners,
+            self.holes,
+            self.boundary,
+            self.crease_method,
+            scheme,
+            if ignored.is_empty() {
+                "none".to_string()
+            } else {
+                ignored.join(", ")
+            }
+        )
+    }
 }
 
 /// Input counts.
@@ -676,6 +779,7 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
         s.depth,
         s.precision
     );
+    let _ = writeln!(t, "  tags         {}", s.tags.text(s.scheme));
     let p = &s.patches;
     let _ = writeln!(
         t,
