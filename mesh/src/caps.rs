@@ -20,6 +20,9 @@ pub enum Reason {
     Boundary,
     /// Two caps claim the face.
     Overlap,
+    /// A crease, corner, hole or boundary rule reaches the configuration:
+    /// Catmull-Clark with OpenSubdiv's rules there.
+    Feature,
 }
 
 impl Reason {
@@ -39,6 +42,7 @@ impl Reason {
             Reason::PolarIncomplete => "polar fan without three rings of regular quads",
             Reason::Boundary => "irregular vertex or cap at the boundary",
             Reason::Overlap => "claimed by two caps",
+            Reason::Feature => "a crease, corner, hole or boundary rule reaches it",
         }
     }
 
@@ -50,6 +54,7 @@ impl Reason {
             Reason::PolarIncomplete => "polar-incomplete",
             Reason::Boundary => "boundary",
             Reason::Overlap => "overlap",
+            Reason::Feature => "feature",
         }
     }
 }

@@ -65,6 +65,15 @@ pub enum MeshError {
     },
     /// The mesh is larger than the indices can address (more than 2³¹ items).
     TooLarge,
+    /// A tag names a vertex or face that does not exist.
+    TagOutOfRange {
+        /// "vertex" or "face".
+        what: &'static str,
+        /// The index (0-based).
+        index: usize,
+        /// How many there are.
+        count: usize,
+    },
 }
 
 impl fmt::Display for MeshError {
@@ -104,6 +113,10 @@ impl fmt::Display for MeshError {
                 "the faces around vertex {vertex} do not form one disk (non-manifold vertex)"
             ),
             MeshError::TooLarge => write!(f, "the mesh has more than 2^31 vertices, faces or corners"),
+            MeshError::TagOutOfRange { what, index, count } => write!(
+                f,
+                "a tag names {what} {index}, but the mesh has {count} {what}s (0-based)"
+            ),
         }
     }
 }

@@ -269,7 +269,7 @@ impl<R: Real> Evaluator<R> {
         let split = plan.vertices.min(self.work.len());
         let (verts, phantoms) = self.work.split_at_mut(split);
         verts.copy_from_slice(&last[..verts.len()]);
-        plan.phantoms.apply(verts, phantoms);
+        plan.phantoms.apply_chained(verts, phantoms);
         // Regular patches are convex combinations of these points: below
         // MAX/2 they are finite. `(p + p)·0` is zero unless a coordinate is
         // above MAX/2 or not finite (then NaN, which the sum keeps).
@@ -292,15 +292,20 @@ impl<R: Real> Evaluator<R> {
             let patch = TensorPatch {
                 points: bspline_to_bezier_cubic(&d),
             };
+            let hole_point = if r.hole != 0 {
+                self.work[r.hole_point as usize]
+            } else {
+                Point3::ZERO
+            };
             sink.patch(&record(
                 PatchKind::Regular,
-                level0,
+                level0 + r.level,
                 &r.chart,
                 [0.0, 1.0, 0.0, 1.0],
                 patch,
                 r.finer,
-                0,
-                Point3::ZERO,
+                r.hole,
+                hole_point,
                 None,
             ));
         }

@@ -14,6 +14,7 @@
 
 extern crate alloc;
 
+pub mod adaptive;
 pub mod caps;
 pub mod chart;
 pub mod error;

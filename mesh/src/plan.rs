@@ -27,13 +27,17 @@
 //! refined by a Catmull-Clark step; the pole becomes an extraordinary point of
 //! the same valence) and rule 3 always picks Catmull-Clark.
 
+use crate::adaptive::base::{plain_base, tagged_base, TaggedBase};
+use crate::adaptive::{self, AdaptiveOptions};
 use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
 use crate::chart::{Affine, FaceChart};
 use crate::error::MeshError;
 use crate::grid::{face_grid, Combo};
+use crate::input::MeshInput;
 use crate::refine::{refine, PolarSeed};
 use crate::stencil::StencilTable;
 use crate::topology::{Topology, NONE};
+use alloc::collections::BTreeSet;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::eg::RuleTable;
@@ -98,9 +102,19 @@ pub struct RegularPlan {
     pub gather: [u32; 16],
     /// Where the face lies in the input.
     pub chart: FaceChart,
-    /// Bit `k`: the face across the face's edge `k` (corner k → k+1) is a cap
-    /// face (two ring patches of half the size meet that edge).
+    /// Bit `k`: two patches of half the size meet the face's edge `k`
+    /// (corner k → k+1): a cap face or a more refined face lies across.
     pub finer: u8,
+    /// Refinement levels below the analysed level: the patch is a face of
+    /// the adaptive refinement ([`crate::adaptive`]), `2^-level` of its
+    /// analysed face across (0 for an analysed face itself).
+    pub level: u32,
+    /// Bit `k`: edge `k` borders the last hole around an irregular vertex,
+    /// closed to `hole_point`.
+    pub hole: u8,
+    /// Working-point index of that vertex's limit point (unused without
+    /// `hole` bits).
+    pub hole_point: u32,
 }
 
 /// A C²PS cap.
@@ -183,6 +197,12 @@ pub struct SurfacePlan<'t> {
     /// Input faces whose neighbourhood made the refinement step necessary,
     /// with the first reason found.
     pub needed_refinement: Vec<UncoveredFace>,
+    /// Faces of the adaptive refinement left as the last hole around an
+    /// irregular vertex (closed by a fan to its limit point).
+    pub last_holes: usize,
+    /// Crease tags on two vertices that share no edge (ignored, as
+    /// OpenSubdiv ignores them).
+    pub creases_not_edges: usize,
     /// Options.
     pub options: PlanOptions<'t>,
 }
@@ -197,30 +217,75 @@ struct Pass {
 }
 
 impl<'t> SurfacePlan<'t> {
-    /// Analyses a validated mesh.
+    /// Analyses a validated mesh without tags (OpenSubdiv's defaults:
+    /// edge-and-corner boundaries, no creases).
     pub fn new(topo: &Topology, options: PlanOptions<'t>) -> Result<Self, MeshError> {
-        let mut level_topo = topo.clone();
-        let mut charts: Vec<FaceChart> =
-            (0..topo.num_faces() as u32).map(FaceChart::input).collect();
+        Self::build(Some(topo), None, topo.num_vertices(), options)
+    }
+
+    /// Validates and analyses a mesh with its tags ([`crate::SubdivTags`]):
+    /// every face that OpenSubdiv accepts is covered. A mesh without tags is
+    /// analysed as by [`Self::new`]; with tags, or when it is not a
+    /// consistently oriented manifold, caps and level-0 patches go only
+    /// where no tag reaches them and every other face is refined adaptively
+    /// with OpenSubdiv's rules ([`crate::adaptive`]).
+    pub fn for_mesh(mesh: &MeshInput, options: PlanOptions<'t>) -> Result<Self, MeshError> {
+        validate(mesh)?;
+        let topo = Topology::new(mesh).ok();
+        if mesh.tags.is_plain() {
+            if let Some(t) = &topo {
+                return Self::new(t, options);
+            }
+        }
+        let tagged = tagged_base(mesh);
+        Self::build(topo.as_ref(), Some(tagged), mesh.vertices.len(), options)
+    }
+
+    fn build(
+        topo: Option<&Topology>,
+        tagged: Option<TaggedBase>,
+        num_vertices: usize,
+        options: PlanOptions<'t>,
+    ) -> Result<Self, MeshError> {
+        let input_faces = topo
+            .map(Topology::num_faces)
+            .or(tagged.as_ref().map(|b| b.level.num_faces()))
+            .unwrap_or(0);
+        let mut charts: Vec<FaceChart> = (0..input_faces as u32).map(FaceChart::input).collect();
         let mut steps = Vec::new();
         let mut needed = Vec::new();
+        let mut level_topo = topo.cloned();
         // Per vertex at the current level: has it been a C²PS pole (refined by
         // the step), and how often.
-        let mut pole_steps: Vec<u32> = vec![0; topo.num_vertices()];
-        let mut pass = analyse(&level_topo, &options);
-        while (steps.len() as u32) < MAX_STEPS
-            && pass
-                .uncovered
-                .iter()
-                .flatten()
-                .any(|r| r.refinement_helps())
-        {
+        let mut pole_steps: Vec<u32> = vec![0; num_vertices];
+        let clean = tagged.as_ref().map(|b| b.clean.as_slice());
+        let mut pass = match &level_topo {
+            Some(t) => analyse(t, &options, clean),
+            None => Pass {
+                regular: Vec::new(),
+                polar: Vec::new(),
+                ev: Vec::new(),
+                uncovered: vec![Some(Reason::Feature); input_faces],
+            },
+        };
+        // Whole-mesh steps only for meshes without tags: the step has no
+        // creasing rules.
+        while let Some(t) = level_topo.as_ref().filter(|_| tagged.is_none()) {
+            if (steps.len() as u32) >= MAX_STEPS
+                || !pass
+                    .uncovered
+                    .iter()
+                    .flatten()
+                    .any(|r| r.refinement_helps())
+            {
+                break;
+            }
             if steps.is_empty() {
                 needed = uncovered_list(&pass.uncovered, &charts, true);
             }
-            let seeds: Vec<PolarSeed> = (0..level_topo.num_vertices())
-                .filter(|&v| !options.catmull_clark && is_fan(&level_topo, v))
-                .filter_map(|v| polar_config(&level_topo, v, None, false).ok())
+            let seeds: Vec<PolarSeed> = (0..t.num_vertices())
+                .filter(|&v| !options.catmull_clark && is_fan(t, v))
+                .filter_map(|v| polar_config(t, v, None, false).ok())
                 .map(|c| PolarSeed {
                     pole: c.pole,
                     link1: c.links[0].clone(),
@@ -229,33 +294,39 @@ impl<'t> SurfacePlan<'t> {
                     quads: c.quads.clone(),
                 })
                 .collect();
-            let refined = refine(&level_topo, &charts, &seeds);
+            let refined = refine(t, &charts, &seeds);
             let mut new_pole_steps = vec![0; refined.num_vertices];
             for (seed, &p) in seeds.iter().zip(&refined.poles) {
                 new_pole_steps[p as usize] = pole_steps[seed.pole as usize] + 1;
             }
-            level_topo = Topology::from_faces(refined.num_vertices, &refined.faces)?;
+            let next = Topology::from_faces(refined.num_vertices, &refined.faces)?;
             charts = refined.charts;
             steps.push(refined.stencils);
             pole_steps = new_pole_steps;
-            pass = analyse(&level_topo, &options);
+            pass = analyse(&next, &options, None);
+            level_topo = Some(next);
         }
+        let vertices = level_topo
+            .as_ref()
+            .map_or(num_vertices, Topology::num_vertices);
         let mut plan = SurfacePlan {
-            input_vertices: topo.num_vertices(),
-            input_faces: topo.num_faces(),
+            input_vertices: num_vertices,
+            input_faces,
             steps,
-            vertices: level_topo.num_vertices(),
+            vertices,
             phantoms: StencilTable::new(),
             regular: Vec::new(),
             polar: Vec::new(),
             ev: Vec::new(),
-            uncovered: uncovered_list(&pass.uncovered, &charts, false),
+            uncovered: Vec::new(),
             needed_refinement: needed,
+            last_holes: 0,
+            creases_not_edges: 0,
             options,
         };
-        let input_vertex = |v: u32| (v < topo.num_vertices() as u32).then_some(v);
+        let level_faces = charts.len();
         let cap_face: Vec<bool> = {
-            let mut c = vec![false; level_topo.num_faces()];
+            let mut c = vec![false; level_faces];
             for p in &pass.polar {
                 for &f in p.triangles.iter().chain(&p.quads) {
                     c[f as usize] = true;
@@ -268,12 +339,46 @@ impl<'t> SurfacePlan<'t> {
             }
             c
         };
+        if let Some(level_topo) = &level_topo {
+            plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
+        }
+        // Every other face: adaptive refinement over the analysed level.
+        let base = match tagged {
+            Some(b) => b,
+            None => {
+                let t = level_topo.as_ref().ok_or(MeshError::Empty)?;
+                plain_base(t)
+            }
+        };
+        let roots: Vec<(u32, FaceChart)> = pass
+            .uncovered
+            .iter()
+            .enumerate()
+            .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
+            .map(|(f, _)| (f as u32, charts[f]))
+            .collect();
+        plan.push_adaptive(&base, &roots, &cap_face);
+        Ok(plan)
+    }
+
+    /// The fast path's patches and caps: regular faces of the analysed level,
+    /// C²PS and EG / Catmull-Clark caps.
+    fn push_caps_and_regular(
+        &mut self,
+        level_topo: &Topology,
+        pass: &Pass,
+        charts: &[FaceChart],
+        pole_steps: &[u32],
+        cap_face: &[bool],
+    ) {
+        let input_vertices = self.input_vertices as u32;
+        let input_vertex = |v: u32| (v < input_vertices).then_some(v);
         for (f, grid, _) in &pass.regular {
             let f = *f as usize;
             let mut gather = [0u32; 16];
             for i in 0..4 {
                 for j in 0..4 {
-                    gather[4 * i + j] = plan.point(&grid[i][j]);
+                    gather[4 * i + j] = self.point(&grid[i][j]);
                 }
             }
             let mut finer = 0u8;
@@ -283,14 +388,17 @@ impl<'t> SurfacePlan<'t> {
                     finer |= 1 << k;
                 }
             }
-            plan.regular.push(RegularPlan {
+            self.regular.push(RegularPlan {
                 gather,
                 chart: charts[f],
                 finer,
+                level: 0,
+                hole: 0,
+                hole_point: 0,
             });
         }
         for c in &pass.polar {
-            plan.push_polar(&level_topo, c, &charts, pole_steps[c.pole as usize]);
+            self.push_polar(level_topo, c, charts, pole_steps[c.pole as usize]);
         }
         for (e, scheme, table) in &pass.ev {
             let sectors = e
@@ -310,7 +418,7 @@ impl<'t> SurfacePlan<'t> {
                 // A face point: all its sectors lie in one input face.
                 None => (None, Some(charts[e.sectors[0].0 as usize].face)),
             };
-            plan.ev.push(EvPlan {
+            self.ev.push(EvPlan {
                 vertex,
                 face,
                 scheme: *scheme,
@@ -320,7 +428,77 @@ impl<'t> SurfacePlan<'t> {
                 table: *table,
             });
         }
-        Ok(plan)
+    }
+
+    /// Covers `roots` (faces of the analysed level) by adaptive refinement
+    /// and marks the edges of level-0 patches that finer patches meet.
+    fn push_adaptive(&mut self, base: &TaggedBase, roots: &[(u32, FaceChart)], cap_face: &[bool]) {
+        if roots.is_empty() {
+            return;
+        }
+        let first = (self.vertices + self.phantoms.len()) as u32;
+        let a = adaptive::cover(
+            &base.level,
+            roots,
+            AdaptiveOptions {
+                depth: self.options.depth,
+                chaikin: base.chaikin,
+            },
+            first,
+        );
+        for i in 0..a.points.rows.len() {
+            self.phantoms.push_row(a.points.rows.row(i));
+        }
+        let edges: BTreeSet<(u32, u32)> = a
+            .patches
+            .iter()
+            .flat_map(|p| {
+                (0..4).map(move |k| {
+                    let (x, y) = (p.corners[k], p.corners[(k + 1) % 4]);
+                    (x.min(y), x.max(y))
+                })
+            })
+            .collect();
+        // Level-0 patches: the analysed face's corners are its grid's inner
+        // points.
+        for r in self.regular.iter_mut().filter(|r| r.level == 0) {
+            let c = [r.gather[5], r.gather[9], r.gather[10], r.gather[6]];
+            for k in 0..4 {
+                if adaptive::finer_across(&a.points, &edges, c[k], c[(k + 1) % 4]) {
+                    r.finer |= 1 << k;
+                }
+            }
+        }
+        for p in a.patches {
+            let mut finer = p.finer;
+            if p.level == 0 {
+                // Across from a cap face: the cap's first ring is finer.
+                for k in 0..4 {
+                    let (x, y) = (p.corners[k], p.corners[(k + 1) % 4]);
+                    if base.edge_faces(x, y).any(|g| cap_face[g]) {
+                        finer |= 1 << k;
+                    }
+                }
+            }
+            self.regular.push(RegularPlan {
+                gather: p.gather,
+                chart: p.chart,
+                finer,
+                level: p.level,
+                hole: p.hole,
+                hole_point: p.hole_point,
+            });
+        }
+        self.last_holes += a.hole_faces;
+        self.creases_not_edges = base.creases_not_edges;
+        for &face in &a.unresolved_faces {
+            self.uncovered.push(UncoveredFace {
+                face,
+                reason: Reason::CrowdedIrregular,
+            });
+        }
+        self.uncovered.sort_by_key(|u| u.face);
+        self.uncovered.dedup_by_key(|u| u.face);
     }
 
     /// Working-point index of a grid entry: the vertex itself, or a new
@@ -417,8 +595,18 @@ fn uncovered_list(
 }
 
 /// Classifies every face of one level.
-fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
+fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> Pass {
     let nf = t.num_faces();
+    // A cap needs its faces and the faces around their vertices clean; a
+    // regular face itself.
+    let is_clean = |f: u32| clean.is_none_or(|c| c[f as usize]);
+    let around_clean = |faces: &[u32]| {
+        faces.iter().all(|&f| {
+            t.face(f as usize)
+                .iter()
+                .all(|&v| t.outgoing(v as usize).all(|h| is_clean(t.face_of(h))))
+        })
+    };
     let mut owner: Vec<Option<Reason>> = vec![None; nf];
     let mut covered = vec![false; nf];
     let mut pass = Pass {
@@ -447,7 +635,9 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
             match polar_config(t, v, None, true) {
                 Ok(c) => {
                     let faces: Vec<u32> = c.triangles.iter().chain(&c.quads).copied().collect();
-                    if claim(&faces, &mut covered) {
+                    if !around_clean(&faces) {
+                        vertex_reason[v] = Some(Reason::Feature);
+                    } else if claim(&faces, &mut covered) {
                         pass.polar.push(c);
                     } else {
                         vertex_reason[v] = Some(Reason::Overlap);
@@ -473,6 +663,10 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
         match ev_config(t, v) {
             Ok(e) => {
                 let faces: Vec<u32> = e.sectors.iter().map(|&(f, _)| f).collect();
+                if !around_clean(&faces) {
+                    vertex_reason[v] = Some(Reason::Feature);
+                    continue;
+                }
                 if !claim(&faces, &mut covered) {
                     vertex_reason[v] = Some(Reason::Overlap);
                     continue;
@@ -493,6 +687,10 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
     }
     for f in 0..nf {
         if covered[f] {
+            continue;
+        }
+        if !is_clean(f as u32) {
+            owner[f] = Some(Reason::Feature);
             continue;
         }
         if let Some(grid) = face_grid(t, f) {
@@ -520,4 +718,62 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>) -> Pass {
     }
     pass.uncovered = owner;
     pass
+}
+
+/// OpenSubdiv's refusals, in this order: no faces or vertices, more than
+/// 2³¹ items, a non-finite coordinate, then per face fewer than 3 vertices or
+/// an index out of range, then tags naming a vertex or face that does not
+/// exist.
+fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
+    let nv = mesh.vertices.len();
+    let nf = mesh.faces.len();
+    if nf == 0 || nv == 0 {
+        return Err(MeshError::Empty);
+    }
+    let corners: usize = mesh.faces.iter().map(|f| f.len()).sum();
+    let limit = (i32::MAX as usize) - 1;
+    if nv > limit || nf > limit || corners > limit {
+        return Err(MeshError::TooLarge);
+    }
+    if let Some(vertex) = mesh
+        .vertices
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(MeshError::NonFinite { vertex });
+    }
+    for (face, f) in mesh.faces.iter().enumerate() {
+        if f.len() < 3 {
+            return Err(MeshError::FaceTooSmall { face, len: f.len() });
+        }
+        if let Some(&index) = f.iter().find(|&&v| v as usize >= nv) {
+            return Err(MeshError::IndexOutOfRange {
+                face,
+                index: i64::from(index),
+                vertices: nv,
+            });
+        }
+    }
+    let tags = &mesh.tags;
+    let bad_vertex = tags
+        .creases
+        .iter()
+        .flat_map(|c| c.vertices)
+        .chain(tags.corners.iter().map(|c| c.vertex))
+        .find(|&v| v as usize >= nv);
+    if let Some(v) = bad_vertex {
+        return Err(MeshError::TagOutOfRange {
+            what: "vertex",
+            index: v as usize,
+            count: nv,
+        });
+    }
+    if let Some(&f) = tags.holes.iter().find(|&&f| f as usize >= nf) {
+        return Err(MeshError::TagOutOfRange {
+            what: "face",
+            index: f as usize,
+            count: nf,
+        });
+    }
+    Ok(())
 }

@@ -86,4 +86,28 @@ impl StencilTable {
             *o = acc;
         }
     }
+
+    /// Applies every row in order, row `i` writing `out[i]` from `src` and
+    /// the rows before it: index `j < src.len()` is `src[j]`, index
+    /// `src.len() + k` is `out[k]` (`k < i`). Rows of later points (the
+    /// adaptive refinement's, [`crate::adaptive`]) are built over earlier
+    /// ones; indices not yet written read as zero.
+    pub fn apply_chained<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
+        let base = src.len();
+        for i in 0..out.len().min(self.len()) {
+            let mut acc = Point3::ZERO;
+            for (idx, w) in self.row(i) {
+                let idx = idx as usize;
+                let p = if idx < base {
+                    src[idx]
+                } else if idx - base < i {
+                    out[idx - base]
+                } else {
+                    continue;
+                };
+                acc += p * R::from_f64(w);
+            }
+            out[i] = acc;
+        }
+    }
 }

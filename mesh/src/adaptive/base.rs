@@ -1,0 +1,173 @@
+//! The base level of a mesh with its tags, as OpenSubdiv's
+//! `TopologyRefinerFactory` prepares it: user sharpness (read as `f32`,
+//! later entries replacing earlier ones, creases on vertex pairs that are no
+//! edge ignored as OpenSubdiv ignores them), holes, boundary faces made
+//! holes under `VTX_BOUNDARY_NONE`, then [`Level::sharpen_base`].
+
+use super::level::Level;
+use crate::input::{BoundaryInterpolation, CreaseMethod, MeshInput};
+use crate::topology::Topology;
+use alloc::collections::BTreeMap;
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// A base level and what the analysis needs to know of it.
+#[derive(Clone, Debug)]
+pub struct TaggedBase {
+    /// The level, tags applied.
+    pub level: Level,
+    /// Per face: not a hole, and no tag or boundary rule other than
+    /// OpenSubdiv's default reaches its corners (a face the fast path's
+    /// regular patches and caps may take).
+    pub clean: Vec<bool>,
+    /// Chaikin's creasing method.
+    pub chaikin: bool,
+    /// Crease tags whose two vertices share no edge (ignored).
+    pub creases_not_edges: usize,
+}
+
+impl TaggedBase {
+    /// Faces of the edge between `x` and `y` (none if there is no such edge).
+    pub fn edge_faces(&self, x: u32, y: u32) -> impl Iterator<Item = usize> + '_ {
+        let l = &self.level;
+        let e = l
+            .vertex_edges(x as usize)
+            .iter()
+            .copied()
+            .find(|&e| l.other_end(e as usize, x) == y);
+        e.into_iter().flat_map(move |e| {
+            l.edge_corners(e as usize)
+                .iter()
+                .map(move |&c| l.corner_face[c as usize] as usize)
+        })
+    }
+}
+
+/// The base level of `mesh` with its tags (indices already validated).
+pub fn tagged_base(mesh: &MeshInput) -> TaggedBase {
+    let tags = &mesh.tags;
+    let nv = mesh.vertices.len();
+    let faces: Vec<&[u32]> = mesh.faces.iter().map(|f| &f[..]).collect();
+    let mut sharp: BTreeMap<(u32, u32), f32> = BTreeMap::new();
+    for c in &tags.creases {
+        let [a, b] = c.vertices;
+        sharp.insert((a.min(b), a.max(b)), sanitize(c.sharpness));
+    }
+    let mut vsharp = vec![0.0f32; nv];
+    for c in &tags.corners {
+        if let Some(s) = vsharp.get_mut(c.vertex as usize) {
+            *s = sanitize(c.sharpness);
+        }
+    }
+    let mut hole = vec![false; faces.len()];
+    for &f in &tags.holes {
+        if let Some(h) = hole.get_mut(f as usize) {
+            *h = true;
+        }
+    }
+    let point = (0..nv as u32).collect();
+    let mut level = Level::new(&faces, point, vsharp, hole, |a, b| {
+        sharp.get(&(a, b)).copied().unwrap_or(0.0)
+    });
+    let edges_found = sharp
+        .keys()
+        .filter(|&&(a, b)| {
+            level
+                .vertex_edges(a as usize)
+                .iter()
+                .any(|&e| level.other_end(e as usize, a) == b)
+        })
+        .count();
+    if tags.boundary == BoundaryInterpolation::None {
+        boundary_faces_to_holes(&mut level);
+    }
+    level.sharpen_base(tags.boundary == BoundaryInterpolation::EdgeAndCorner);
+    let clean = clean_faces(&level, tags.boundary);
+    TaggedBase {
+        level,
+        clean,
+        chaikin: tags.crease_method == CreaseMethod::Chaikin,
+        creases_not_edges: sharp.len() - edges_found,
+    }
+}
+
+/// The base level of a mesh without tags.
+pub fn plain_base(t: &Topology) -> TaggedBase {
+    let faces: Vec<&[u32]> = (0..t.num_faces()).map(|f| t.face(f)).collect();
+    let point = (0..t.num_vertices() as u32).collect();
+    let mut level = Level::new(
+        &faces,
+        point,
+        vec![0.0; t.num_vertices()],
+        vec![false; faces.len()],
+        |_, _| 0.0,
+    );
+    level.sharpen_base(true);
+    let clean = vec![true; faces.len()];
+    TaggedBase {
+        level,
+        clean,
+        chaikin: false,
+        creases_not_edges: 0,
+    }
+}
+
+/// Negative and NaN sharpness are smooth.
+fn sanitize(s: f32) -> f32 {
+    if s > 0.0 {
+        s
+    } else {
+        0.0
+    }
+}
+
+/// `VTX_BOUNDARY_NONE`: every face at a vertex that has a boundary edge not
+/// made infinitely sharp by a tag is a hole.
+fn boundary_faces_to_holes(level: &mut Level) {
+    let mut holes = Vec::new();
+    for v in 0..level.num_vertices() {
+        let open = level.vertex_edges(v).iter().any(|&e| {
+            level.edge_corners(e as usize).len() == 1
+                && !Level::infinite(level.edge_sharpness[e as usize])
+        });
+        if open {
+            holes.extend(
+                level
+                    .vertex_corners(v)
+                    .iter()
+                    .map(|&c| level.corner_face[c as usize]),
+            );
+        }
+    }
+    for f in holes {
+        level.hole[f as usize] = true;
+    }
+}
+
+/// Faces whose corners see only OpenSubdiv's defaults: no sharp edge but
+/// boundary edges, no sharp vertex but corners of one face sharpened by the
+/// edge-and-corner rule, no hole.
+fn clean_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
+    let vertex_clean: Vec<bool> = (0..level.num_vertices())
+        .map(|v| {
+            let edges = level.vertex_edges(v);
+            let corner = level.vertex_corners(v).len() == 1 && edges.len() == 2;
+            let vs = level.vertex_sharpness[v];
+            let vertex_ok = if corner {
+                boundary == BoundaryInterpolation::EdgeAndCorner
+            } else {
+                vs == 0.0
+            };
+            vertex_ok
+                && edges.iter().all(|&e| {
+                    let e = e as usize;
+                    level.edge_sharpness[e] == 0.0
+                        || (level.edge_corners(e).len() == 1
+                            && Level::infinite(level.edge_sharpness[e]))
+                })
+        })
+        .collect();
+    (0..level.num_faces())
+        .map(|f| !level.hole[f] && level.face(f).iter().all(|&v| vertex_clean[v as usize]))
+        .collect()
+}

@@ -1,0 +1,287 @@
+//! Feature-adaptive Catmull-Clark with OpenSubdiv's semantics (Nießner, Loop,
+//! Meyer & DeRose 2012; OpenSubdiv's `RefineAdaptive`): every face that no
+//! cap and no level-0 patch covers is refined on its own, as deep as it
+//! needs, with the `Sdc` rules for creases, corners, boundaries, holes and
+//! non-manifold features ([`refine`]). A face that is regular at some level
+//! ([`regular`]) is a uniform B-spline patch there; around an irregular
+//! vertex the faces refine into rings converging to it until `depth`, and
+//! the last ring's hole is closed to the vertex's limit point; semi-sharp
+//! features refine until their sharpness has decayed.
+//!
+//! Each face is refined inside its own neighbourhood (the faces around the
+//! vertices of the faces around its corners), which is all the refinement
+//! rules reach; points that two neighbourhoods share are made once
+//! ([`points`]), so the patches of neighbouring faces meet exactly.
+
+pub mod base;
+pub mod crease;
+pub mod level;
+pub mod points;
+pub mod refine;
+pub mod regular;
+
+use crate::chart::{Affine, FaceChart};
+use alloc::collections::BTreeSet;
+use alloc::vec;
+use alloc::vec::Vec;
+use level::Level;
+use points::{Key, Points};
+use refine::{limit_point, refine};
+use regular::{corner_is_regular, regular_grid};
+
+/// "No point".
+pub const NONE: u32 = u32::MAX;
+
+/// Levels a semi-sharp feature may need beyond `depth` (sharpness below 10
+/// decays in 10 levels).
+const EXTRA_LEVELS: u32 = 11;
+
+/// A B-spline patch of the adaptive refinement.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AdaptivePatch {
+    /// Its 16 control points (working-point indices), `[4·i + j]`.
+    pub gather: [u32; 16],
+    /// Where it lies in the input.
+    pub chart: FaceChart,
+    /// Refinement level below the analysed level (0: the face itself).
+    pub level: u32,
+    /// Its four corners (working points), for matching neighbours' edges.
+    pub corners: [u32; 4],
+    /// Bit `k`: edge `k` (corner k → k+1) borders the last hole of a vertex's
+    /// rings, closed to `hole_point`.
+    pub hole: u8,
+    /// The limit point of that vertex ([`NONE`] without hole edges).
+    pub hole_point: u32,
+    /// Bit `k`: across edge `k` lie two patches of half the size.
+    pub finer: u8,
+}
+
+/// The adaptive refinement of some faces.
+#[derive(Clone, Debug)]
+pub struct Adaptive {
+    /// The patches.
+    pub patches: Vec<AdaptivePatch>,
+    /// The points they need beyond the level's own vertices.
+    pub points: Points,
+    /// Irregular vertices left as a last hole (one per hole face).
+    pub hole_faces: usize,
+    /// Input faces with a part that reached the deepest level allowed
+    /// without becoming regular or a hole (that part is missing; none seen).
+    pub unresolved_faces: Vec<u32>,
+}
+
+/// Options of the adaptive refinement.
+#[derive(Clone, Copy, Debug)]
+pub struct AdaptiveOptions {
+    /// Rings around an irregular vertex (its last hole is `2^-depth` of its faces).
+    pub depth: u32,
+    /// Chaikin's creasing method.
+    pub chaikin: bool,
+}
+
+/// Covers `roots` (faces of `base` with where they lie in the input).
+/// Points are numbered from `first_point` on.
+pub fn cover(
+    base: &Level,
+    roots: &[(u32, FaceChart)],
+    options: AdaptiveOptions,
+    first_point: u32,
+) -> Adaptive {
+    let mut out = Adaptive {
+        patches: Vec::new(),
+        points: Points::new(first_point),
+        hole_faces: 0,
+        unresolved_faces: Vec::new(),
+    };
+    for &(f, chart) in roots {
+        visit(base, f as usize, 0, chart, [NONE; 4], options, &mut out);
+    }
+    mark_finer(&mut out);
+    out
+}
+
+/// Irregular corners of face `f` (bit per corner) and whether a semi-sharp
+/// feature reaches a corner.
+fn irregular_corners(m: &Level, f: usize) -> (u32, bool) {
+    let mut fan = Vec::with_capacity(8);
+    let mut bits = 0u32;
+    let mut semi = false;
+    for (k, c) in m.face_corners(f).enumerate() {
+        let v = m.corner_vertex[c as usize] as usize;
+        semi |= m.has_semi_sharp(v);
+        if !corner_is_regular(m, c, &mut fan) {
+            bits |= 1 << k.min(31);
+        }
+    }
+    (bits, semi)
+}
+
+/// If face `f` at `level` is the last hole around one irregular vertex: that
+/// vertex.
+fn final_hole(m: &Level, f: usize, level: u32, options: AdaptiveOptions) -> Option<usize> {
+    if level < options.depth.max(1) || m.face(f).len() != 4 || m.hole[f] {
+        return None;
+    }
+    let (bits, semi) = irregular_corners(m, f);
+    if semi || bits.count_ones() != 1 {
+        return None;
+    }
+    let k = bits.trailing_zeros();
+    Some(m.corner_vertex[(m.face_start[f] + k) as usize] as usize)
+}
+
+fn visit(
+    m: &Level,
+    f: usize,
+    level: u32,
+    chart: FaceChart,
+    across_hole: [u32; 4],
+    options: AdaptiveOptions,
+    out: &mut Adaptive,
+) {
+    if m.hole[f] {
+        return;
+    }
+    if let Some(gather) = regular_grid(m, f, &mut out.points) {
+        let first = m.face_start[f] as usize;
+        let corners = core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]);
+        let mut hole = 0u8;
+        let mut hole_point = NONE;
+        for (k, &p) in across_hole.iter().enumerate() {
+            if p != NONE {
+                hole |= 1 << k;
+                hole_point = p;
+            }
+        }
+        out.patches.push(AdaptivePatch {
+            gather,
+            chart,
+            level,
+            corners,
+            hole,
+            hole_point,
+            finer: 0,
+        });
+        return;
+    }
+    if final_hole(m, f, level, options).is_some() {
+        out.hole_faces += 1;
+        return;
+    }
+    if level >= options.depth.max(1) + EXTRA_LEVELS {
+        out.unresolved_faces.push(chart.face);
+        return;
+    }
+    // The faces around f's corners, each once.
+    let mut ring: Vec<u32> = Vec::new();
+    for c in m.face_corners(f) {
+        let v = m.corner_vertex[c as usize] as usize;
+        for &k in m.vertex_corners(v) {
+            ring.push(m.corner_face[k as usize]);
+        }
+    }
+    ring.sort_unstable();
+    ring.dedup();
+    let at = ring.iter().position(|&g| g as usize == f).unwrap_or(0);
+    let child = refine(m, &ring, options.chaikin, &mut out.points);
+    let cm = &child.level;
+    let n = m.face(f).len();
+    let first = child.first[at] as usize;
+    // Which children are last holes, and their vertex's limit point.
+    let holes: Vec<u32> = (0..n)
+        .map(|k| {
+            final_hole(cm, first + k, level + 1, options)
+                .and_then(|v| limit_point(cm, v, &mut out.points))
+                .unwrap_or(NONE)
+        })
+        .collect();
+    for k in 0..n {
+        let sub = if n == 4 || chart.corner.is_some() {
+            FaceChart {
+                face: chart.face,
+                corner: chart.corner,
+                map: chart.map.compose(&Affine::quadrant(k)),
+            }
+        } else {
+            FaceChart {
+                face: chart.face,
+                corner: Some(k as u8),
+                map: Affine::IDENTITY,
+            }
+        };
+        // Child k = (vertex child, next edge child, face child, previous
+        // edge child): its edges 0 and 3 lie on the parent's edges k and
+        // k − 1, edges 1 and 2 border children k + 1 and k − 1.
+        let across = [
+            across_hole[k.min(3)],
+            holes[(k + 1) % n],
+            holes[(k + n - 1) % n],
+            across_hole[((k + n - 1) % n).min(3)],
+        ];
+        let across = if n == 4 {
+            across
+        } else {
+            // A non-quad at the analysed level has no neighbour holes yet.
+            [NONE, across[1], across[2], NONE]
+        };
+        visit(cm, first + k, level + 1, sub, across, options, out);
+    }
+}
+
+/// Sets [`AdaptivePatch::finer`]: an edge `(a, b)` whose neighbour across
+/// is refined once more has the edges `(a', m)` and `(m, b')` of the child
+/// points `a'`, `b'` of `a`, `b` and `m` of the edge.
+fn mark_finer(out: &mut Adaptive) {
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let edges: BTreeSet<(u32, u32)> = out
+        .patches
+        .iter()
+        .flat_map(|p| (0..4).map(move |k| key(p.corners[k], p.corners[(k + 1) % 4])))
+        .collect();
+    for p in &mut out.patches {
+        for k in 0..4 {
+            let (a, b) = (p.corners[k], p.corners[(k + 1) % 4]);
+            if finer_across(&out.points, &edges, a, b) {
+                p.finer |= 1 << k;
+            }
+        }
+    }
+}
+
+/// Whether the edge `(a, b)` is met by two half-size patch edges.
+pub fn finer_across(points: &Points, edges: &BTreeSet<(u32, u32)>, a: u32, b: u32) -> bool {
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    let (Some(ca), Some(mid)) = (
+        points.get(&Key::Vertex(a)),
+        points.get(&Key::Edge(a.min(b), a.max(b))),
+    ) else {
+        return false;
+    };
+    edges.contains(&key(ca, mid))
+}
+
+/// A base level for the adaptive refinement: faces, per-vertex points, and
+/// the mesh's tags already applied (see [`Level::sharpen_base`]).
+pub fn base_level(
+    faces: &[&[u32]],
+    num_vertices: usize,
+    vertex_sharpness: Vec<f32>,
+    holes: Vec<bool>,
+    sharp: impl FnMut(u32, u32) -> f32,
+    sharpen_corners: bool,
+) -> Level {
+    let point = (0..num_vertices as u32).collect();
+    let mut l = Level::new(faces, point, vertex_sharpness, holes, sharp);
+    l.sharpen_base(sharpen_corners);
+    l
+}
+
+/// Per face of `base`, the number of patches by level (for summaries).
+pub fn patches_per_level(a: &Adaptive) -> Vec<usize> {
+    let deepest = a.patches.iter().map(|p| p.level).max().map_or(0, |l| l + 1);
+    let mut counts = vec![0usize; deepest as usize];
+    for p in &a.patches {
+        counts[p.level as usize] += 1;
+    }
+    counts
+}

@@ -1,0 +1,59 @@
+//! `Points`: the points adaptive refinement makes, each a stencil row over
+//! earlier points, made once however many neighbourhoods need it. A point is
+//! named by what it is the child of (a vertex, an edge, a face of the level
+//! above), so two neighbourhoods that refine the same component share the
+//! point, and a patch edge can ask whether its neighbour is finer.
+
+use crate::stencil::StencilTable;
+use alloc::collections::BTreeMap;
+use alloc::vec::Vec;
+
+/// What a point is.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Key {
+    /// The child of a vertex (its point).
+    Vertex(u32),
+    /// The child of an edge (its end points, smaller first).
+    Edge(u32, u32),
+    /// The child of a face (its points, sorted).
+    Face(Vec<u32>),
+    /// `2·a − b`: a phantom point beyond an infinitely sharp edge.
+    Mirror(u32, u32),
+    /// The limit position of a vertex.
+    Limit(u32),
+}
+
+/// Points numbered from `base` on, each a row over earlier points.
+#[derive(Clone, Debug)]
+pub struct Points {
+    base: u32,
+    keys: BTreeMap<Key, u32>,
+    /// Row `i` is point `base + i`.
+    pub rows: StencilTable,
+}
+
+impl Points {
+    /// An empty set whose first point will be `base`.
+    pub fn new(base: u32) -> Self {
+        Points {
+            base,
+            keys: BTreeMap::new(),
+            rows: StencilTable::new(),
+        }
+    }
+
+    /// The point named `key`, if it was made.
+    pub fn get(&self, key: &Key) -> Option<u32> {
+        self.keys.get(key).copied()
+    }
+
+    /// The point named `key`, made from `row()` the first time.
+    pub fn get_or_make(&mut self, key: Key, row: impl FnOnce() -> Vec<(u32, f64)>) -> u32 {
+        if let Some(&p) = self.keys.get(&key) {
+            return p;
+        }
+        let p = self.base + self.rows.push_row(row());
+        self.keys.insert(key, p);
+        p
+    }
+}

@@ -1,0 +1,344 @@
+//! One Catmull-Clark refinement of some faces of a level with OpenSubdiv's
+//! `Sdc` Catmark rules and creasing (`Sdc::Scheme::ComputeFaceVertexMask`,
+//! `ComputeEdgeVertexMask`, `ComputeVertexVertexMask`, and the child
+//! sharpness of `Vtr::Refinement`), and the limit masks
+//! (`ComputeVertexLimitMask`).
+//!
+//! Refining faces `R` needs, for every vertex of `R`, all its faces and
+//! edges; the caller ([`super::cover`]) refines the faces around a target
+//! face's corners inside a level that holds the faces around their vertices,
+//! and the child level it gets back again holds the faces around the
+//! corners' vertices of each child of the target (the closure that lets the
+//! refinement go on).
+//!
+//! Masks, over the parent level's points:
+//! - face point: centroid;
+//! - edge point, sharpness `s`: smooth `(a + b)/4 + (f₁ + f₂)/4` (face
+//!   centroids) when `s = 0`; the midpoint when both child edges are sharp;
+//!   otherwise `s·midpoint + (1 − s)·smooth`;
+//! - vertex point by the parent rule: smooth and dart `(n−2)/n·v + Σ ends/n²
+//!   + Σ centroids/n²`, crease `¾ v + ⅛ (a + b)` (the sharp edges' ends),
+//!   corner `v`; when the child's rule differs, `w·parent + (1 − w)·child`
+//!   with `w` the fractional weight ([`super::crease::fractional_weight`]).
+
+use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, vertex_rule, Rule};
+use super::level::Level;
+use super::points::{Key, Points};
+use alloc::collections::BTreeMap;
+use alloc::vec;
+use alloc::vec::Vec;
+
+/// "Not made yet".
+const NONE: u32 = u32::MAX;
+
+/// A stencil row being built: `(point, weight)`, one entry per point.
+struct Row(Vec<(u32, f64)>);
+
+impl Row {
+    fn new() -> Self {
+        Row(Vec::with_capacity(16))
+    }
+    fn add(&mut self, p: u32, w: f64) {
+        if let Some(e) = self.0.iter_mut().find(|e| e.0 == p) {
+            e.1 += w;
+        } else {
+            self.0.push((p, w));
+        }
+    }
+    fn scaled(mut self, s: f64) -> Self {
+        for e in &mut self.0 {
+            e.1 *= s;
+        }
+        self
+    }
+    fn plus(mut self, other: Row) -> Self {
+        for (p, w) in other.0 {
+            self.add(p, w);
+        }
+        self
+    }
+}
+
+/// Adds `w ×` face `f`'s centroid to `row`.
+fn add_centroid(m: &Level, f: usize, w: f64, row: &mut Row) {
+    let vs = m.face(f);
+    let share = w / vs.len() as f64;
+    for &v in vs {
+        row.add(m.point[v as usize], share);
+    }
+}
+
+/// The child level: the children of `faces` (each face's children in corner
+/// order, face after face), and where each given face's children start.
+pub struct Child {
+    /// The child level.
+    pub level: Level,
+    /// `first[i]`: the child of `faces[i]` at its corner 0.
+    pub first: Vec<u32>,
+}
+
+/// Refines `faces` of `m` (see the module doc for what `m` must hold).
+pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> Child {
+    let mut vchild = vec![NONE; m.num_vertices()];
+    let mut echild = vec![NONE; m.edge_vertices.len()];
+    let mut fchild = vec![NONE; m.num_faces()];
+    let mut point: Vec<u32> = Vec::new();
+    let mut vsharp: Vec<f32> = Vec::new();
+    let mut sharp_edges: BTreeMap<(u32, u32), f32> = BTreeMap::new();
+    let mut child_faces: Vec<[u32; 4]> = Vec::new();
+    let mut holes = Vec::new();
+    let mut first = Vec::with_capacity(faces.len());
+
+    let new_vertex = |p: u32, s: f32, point: &mut Vec<u32>, vsharp: &mut Vec<f32>| -> u32 {
+        point.push(p);
+        vsharp.push(s);
+        (point.len() - 1) as u32
+    };
+    for &f in faces {
+        let f = f as usize;
+        if fchild[f] == NONE {
+            let p = face_point(m, f, points);
+            fchild[f] = new_vertex(p, 0.0, &mut point, &mut vsharp);
+        }
+        for c in m.face_corners(f) {
+            let v = m.corner_vertex[c as usize] as usize;
+            if vchild[v] == NONE {
+                let p = vertex_point(m, v, chaikin, points);
+                vchild[v] = new_vertex(p, decay(m.vertex_sharpness[v]), &mut point, &mut vsharp);
+            }
+            let e = m.corner_edge[c as usize] as usize;
+            if echild[e] == NONE {
+                let p = edge_point(m, e, chaikin, points);
+                echild[e] = new_vertex(p, 0.0, &mut point, &mut vsharp);
+                let s = m.edge_sharpness[e];
+                if is_sharp(s) {
+                    for end in m.edge_vertices[e] {
+                        let cs = child_edge_sharpness(s, chaikin, around(m, end as usize));
+                        if is_sharp(cs) {
+                            let (a, b) = (
+                                vchild_or_make(
+                                    m,
+                                    end as usize,
+                                    &mut vchild,
+                                    chaikin,
+                                    points,
+                                    &mut point,
+                                    &mut vsharp,
+                                ),
+                                echild[e],
+                            );
+                            sharp_edges.insert((a.min(b), a.max(b)), cs);
+                        }
+                    }
+                }
+            }
+        }
+        first.push(child_faces.len() as u32);
+        let corners = m.face_corners(f);
+        for c in corners.clone() {
+            let v = m.corner_vertex[c as usize] as usize;
+            let e_next = m.corner_edge[c as usize] as usize;
+            let e_prev = m.corner_edge[m.prev(c) as usize] as usize;
+            child_faces.push([vchild[v], echild[e_next], fchild[f], echild[e_prev]]);
+            holes.push(m.hole[f]);
+        }
+    }
+    let refs: Vec<&[u32]> = child_faces.iter().map(|q| &q[..]).collect();
+    let level = Level::new(&refs, point, vsharp, holes, |a, b| {
+        sharp_edges.get(&(a, b)).copied().unwrap_or(0.0)
+    });
+    Child { level, first }
+}
+
+/// The child of vertex `v`, made when missing (an edge's end that no face
+/// corner of the refined faces reached yet).
+#[allow(clippy::too_many_arguments)]
+fn vchild_or_make(
+    m: &Level,
+    v: usize,
+    vchild: &mut [u32],
+    chaikin: bool,
+    points: &mut Points,
+    point: &mut Vec<u32>,
+    vsharp: &mut Vec<f32>,
+) -> u32 {
+    if vchild[v] == NONE {
+        let p = vertex_point(m, v, chaikin, points);
+        point.push(p);
+        vsharp.push(decay(m.vertex_sharpness[v]));
+        vchild[v] = (point.len() - 1) as u32;
+    }
+    vchild[v]
+}
+
+/// Sharpness of the edges at `v`.
+fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
+    m.vertex_edges(v)
+        .iter()
+        .map(move |&e| m.edge_sharpness[e as usize])
+}
+
+/// The face point of `f`.
+pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
+    let mut key: Vec<u32> = m.face(f).iter().map(|&v| m.point[v as usize]).collect();
+    key.sort_unstable();
+    points.get_or_make(Key::Face(key), || {
+        let mut row = Row::new();
+        add_centroid(m, f, 1.0, &mut row);
+        row.0
+    })
+}
+
+/// The edge point of `e`.
+pub fn edge_point(m: &Level, e: usize, chaikin: bool, points: &mut Points) -> u32 {
+    let [a, b] = m.edge_vertices[e];
+    let (pa, pb) = (m.point[a as usize], m.point[b as usize]);
+    let key = Key::Edge(pa.min(pb), pa.max(pb));
+    points.get_or_make(key, || {
+        let s = m.edge_sharpness[e];
+        let mid = || {
+            let mut r = Row::new();
+            r.add(pa, 0.5);
+            r.add(pb, 0.5);
+            r
+        };
+        let smooth = || {
+            let mut r = Row::new();
+            r.add(pa, 0.25);
+            r.add(pb, 0.25);
+            for &c in m.edge_corners(e) {
+                add_centroid(m, m.corner_face[c as usize] as usize, 0.25, &mut r);
+            }
+            r
+        };
+        if !is_sharp(s) {
+            return smooth().0;
+        }
+        let both_sharp = m.edge_vertices[e]
+            .iter()
+            .all(|&end| is_sharp(child_edge_sharpness(s, chaikin, around(m, end as usize))));
+        if both_sharp {
+            return mid().0;
+        }
+        let w = f64::from(s);
+        mid().scaled(w).plus(smooth().scaled(1.0 - w)).0
+    })
+}
+
+/// The mask of rule `rule` at `v` (`sharp[i]`: whether edge `i` of `v` counts
+/// as sharp for the crease pair).
+fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool]) -> Row {
+    let pv = m.point[v];
+    let mut r = Row::new();
+    match rule {
+        Rule::Smooth | Rule::Dart => {
+            let edges = m.vertex_edges(v);
+            let n = edges.len() as f64;
+            r.add(pv, (n - 2.0) / n);
+            for &e in edges {
+                r.add(
+                    m.point[m.other_end(e as usize, v as u32) as usize],
+                    1.0 / (n * n),
+                );
+            }
+            for &c in m.vertex_corners(v) {
+                add_centroid(m, m.corner_face[c as usize] as usize, 1.0 / (n * n), &mut r);
+            }
+        }
+        Rule::Crease => {
+            r.add(pv, 0.75);
+            let edges = m.vertex_edges(v);
+            for (i, &e) in edges.iter().enumerate().filter(|(i, _)| sharp[*i]).take(2) {
+                let _ = i;
+                r.add(m.point[m.other_end(e as usize, v as u32) as usize], 0.125);
+            }
+        }
+        Rule::Corner => r.add(pv, 1.0),
+    }
+    r
+}
+
+/// The vertex point of `v`.
+pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> u32 {
+    points.get_or_make(Key::Vertex(m.point[v]), || {
+        let edges = m.vertex_edges(v);
+        let parent: Vec<f32> = edges
+            .iter()
+            .map(|&e| m.edge_sharpness[e as usize])
+            .collect();
+        let p_sharp: Vec<bool> = parent.iter().map(|&s| is_sharp(s)).collect();
+        let p_rule = vertex_rule(
+            m.vertex_sharpness[v],
+            p_sharp.iter().filter(|&&s| s).count(),
+        );
+        let p_mask = vertex_mask(m, v, p_rule, &p_sharp);
+        if matches!(p_rule, Rule::Smooth | Rule::Dart) {
+            return p_mask.0;
+        }
+        let child: Vec<f32> = parent
+            .iter()
+            .map(|&s| child_edge_sharpness(s, chaikin, parent.iter().copied()))
+            .collect();
+        let c_sharp: Vec<bool> = child.iter().map(|&s| is_sharp(s)).collect();
+        let cv = decay(m.vertex_sharpness[v]);
+        let c_rule = vertex_rule(cv, c_sharp.iter().filter(|&&s| s).count());
+        if c_rule == p_rule {
+            return p_mask.0;
+        }
+        let c_mask = vertex_mask(m, v, c_rule, &c_sharp);
+        let w = fractional_weight(
+            m.vertex_sharpness[v],
+            cv,
+            parent.iter().copied().zip(child.iter().copied()),
+        );
+        p_mask.scaled(w).plus(c_mask.scaled(1.0 - w)).0
+    })
+}
+
+/// The limit position of `v` (`Sdc::Scheme::ComputeVertexLimitMask`): smooth
+/// and dart `(n² v + 4 Σ ends + Σ opposite corners)/(n(n+5))` over quads,
+/// crease `(4v + a + b)/6`, corner `v`. `None` for a smooth vertex with a
+/// face that is not a quad (its limit mask needs face centroids; the
+/// refinement never stops there).
+pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
+    let rule = m.rule(v);
+    let pv = m.point[v];
+    let mut row = Row::new();
+    match rule {
+        Rule::Smooth | Rule::Dart => {
+            let edges = m.vertex_edges(v);
+            let n = edges.len() as f64;
+            let w = 1.0 / (n * (n + 5.0));
+            row.add(pv, n / (n + 5.0));
+            for &e in edges {
+                row.add(m.point[m.other_end(e as usize, v as u32) as usize], 4.0 * w);
+            }
+            for &c in m.vertex_corners(v) {
+                let f = m.corner_face[c as usize] as usize;
+                if m.face(f).len() != 4 {
+                    return None;
+                }
+                let opposite = m.next(m.next(c));
+                row.add(m.point[m.corner_vertex[opposite as usize] as usize], w);
+            }
+        }
+        Rule::Crease => {
+            row.add(pv, 2.0 / 3.0);
+            let sharp: Vec<u32> = m
+                .vertex_edges(v)
+                .iter()
+                .copied()
+                .filter(|&e| is_sharp(m.edge_sharpness[e as usize]))
+                .take(2)
+                .collect();
+            for e in sharp {
+                row.add(
+                    m.point[m.other_end(e as usize, v as u32) as usize],
+                    1.0 / 6.0,
+                );
+            }
+        }
+        Rule::Corner => row.add(pv, 1.0),
+    }
+    Some(points.get_or_make(Key::Limit(pv), || row.0))
+}
