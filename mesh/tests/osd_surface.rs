@@ -247,3 +247,232 @@ fn shrink_disk(m: &MeshInput) -> MeshInput {
     let faces: Vec<Vec<u32>> = m.faces.iter().filter(|f| f.contains(&0)).cloned().collect();
     MeshInput::new(m.vertices.clone(), faces)
 }
+
+/// Bumpy height over the plane.
+fn height(x: f64, y: f64) -> f64 {
+    0.15 * (1.3 * x).sin() * (0.9 * y + 0.2).cos() + 0.05 * x * y
+}
+
+/// Builds faces from keyed points: `key(a, b)` names a vertex.
+struct Builder {
+    keys: std::collections::HashMap<(i64, i64, i64), u32>,
+    vertices: Vec<[f64; 3]>,
+    faces: Vec<Vec<u32>>,
+}
+
+impl Builder {
+    fn new() -> Self {
+        Builder {
+            keys: Default::default(),
+            vertices: Vec::new(),
+            faces: Vec::new(),
+        }
+    }
+    fn vertex(&mut self, key: (i64, i64, i64), p: [f64; 3]) -> u32 {
+        let n = self.vertices.len() as u32;
+        *self.keys.entry(key).or_insert_with(|| {
+            self.vertices.push(p);
+            n
+        })
+    }
+    fn finish(self) -> MeshInput {
+        MeshInput::new(self.vertices, self.faces)
+    }
+}
+
+/// A boundary vertex with `k` quad sectors spanning `angle` degrees, each
+/// sector a 2×2 grid: convex below 180°, concave above.
+fn boundary_fan(k: usize, angle: f64) -> MeshInput {
+    let mut b = Builder::new();
+    let dir = |i: usize| {
+        let a = (angle * i as f64 / k as f64).to_radians();
+        [a.cos(), a.sin()]
+    };
+    let key = |s: usize, a: i64, c: i64| -> (i64, i64, i64) {
+        match (a, c) {
+            (0, 0) => (-1, 0, 0),
+            (_, 0) => (s as i64, a, 0),
+            (0, _) => (s as i64 + 1, c, 0),
+            _ => (s as i64, a, c + 100),
+        }
+    };
+    for s in 0..k {
+        let (u, w) = (dir(s), dir(s + 1));
+        let mut id = [[0u32; 3]; 3];
+        for (a, row) in id.iter_mut().enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                let (af, cf) = (a as f64, c as f64);
+                let (px, py) = (af * u[0] + cf * w[0], af * u[1] + cf * w[1]);
+                *x = b.vertex(key(s, a as i64, c as i64), [px, py, height(px, py)]);
+            }
+        }
+        for a in 0..2 {
+            for c in 0..2 {
+                b.faces
+                    .push(vec![id[a][c], id[a + 1][c], id[a + 1][c + 1], id[a][c + 1]]);
+            }
+        }
+    }
+    b.finish()
+}
+
+#[test]
+fn boundary_vertices_with_one_to_six_faces_convex_and_concave() {
+    for (k, angles) in [
+        (1, vec![90.0]),
+        (2, vec![120.0, 180.0, 270.0]),
+        (3, vec![180.0, 270.0]),
+        (4, vec![180.0, 300.0]),
+        (5, vec![180.0, 300.0]),
+        (6, vec![180.0, 300.0]),
+    ] {
+        for angle in angles {
+            for b in [
+                BoundaryInterpolation::EdgeAndCorner,
+                BoundaryInterpolation::EdgeOnly,
+            ] {
+                let mut m = boundary_fan(k, angle);
+                m.tags.boundary = b;
+                let name = format!("boundary fan k={k} {angle}° {}", b.id());
+                let r = compare(&name, &m, 4);
+                eprintln!("{name}: {} samples, worst {:e}", r.compared, r.worst);
+            }
+        }
+    }
+}
+
+/// `pages` quad grids of 3×2 faces sharing their first column of vertices
+/// (a non-manifold "book" spine of 3 edges).
+fn book(pages: usize) -> MeshInput {
+    let mut b = Builder::new();
+    for p in 0..pages {
+        let a = std::f64::consts::TAU * p as f64 / pages as f64;
+        let mut id = [[0u32; 4]; 4];
+        for (i, row) in id.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                let r = i as f64;
+                let key = if i == 0 {
+                    (-1, j as i64, 0)
+                } else {
+                    (p as i64, i as i64, j as i64)
+                };
+                let pos = [
+                    r * a.cos(),
+                    r * a.sin() + 0.1 * r * r,
+                    j as f64 + 0.05 * r * j as f64,
+                ];
+                *x = b.vertex(key, pos);
+            }
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                b.faces
+                    .push(vec![id[i][j], id[i + 1][j], id[i + 1][j + 1], id[i][j + 1]]);
+            }
+        }
+    }
+    b.finish()
+}
+
+/// Two 3×3 grids touching at one vertex (a bowtie vertex).
+fn bowtie() -> MeshInput {
+    let mut b = Builder::new();
+    for g in 0..2i64 {
+        let sign = if g == 0 { 1.0 } else { -1.0 };
+        let mut id = [[0u32; 4]; 4];
+        for (i, row) in id.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                let key = if i == 0 && j == 0 {
+                    (-1, 0, 0)
+                } else {
+                    (g, i as i64, j as i64)
+                };
+                let (px, py) = (sign * i as f64, sign * j as f64);
+                *x = b.vertex(key, [px, py, height(px, py) + 0.1 * g as f64 * px * px]);
+            }
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                b.faces
+                    .push(vec![id[i][j], id[i + 1][j], id[i + 1][j + 1], id[i][j + 1]]);
+            }
+        }
+    }
+    b.finish()
+}
+
+#[test]
+fn non_manifold_edges_and_vertices() {
+    for pages in [3, 4] {
+        let r = compare(&format!("book of {pages}"), &book(pages), 4);
+        eprintln!(
+            "book of {pages}: {} samples, worst {:e}",
+            r.compared, r.worst
+        );
+    }
+    let r = compare("bowtie", &bowtie(), 4);
+    eprintln!("bowtie: {} samples, worst {:e}", r.compared, r.worst);
+}
+
+#[test]
+fn interior_valence_two_vertex() {
+    // A 4×4 grid whose middle quad (a, b, c, d) is split at a new vertex x
+    // into (a, b, x, d) and (b, c, d, x): x has two edges and two faces.
+    let mut m = samples::grid(4, 4);
+    let (a, bb, c, d) = (gv(4, 1, 1), gv(4, 2, 1), gv(4, 2, 2), gv(4, 1, 2));
+    let mid = m
+        .faces
+        .iter()
+        .position(|f| f.contains(&a) && f.contains(&c))
+        .unwrap();
+    let x = m.vertices.len() as u32;
+    let (pa, pc) = (m.vertices[a as usize], m.vertices[c as usize]);
+    m.vertices.push([
+        (pa[0] + pc[0]) / 2.0,
+        (pa[1] + pc[1]) / 2.0,
+        (pa[2] + pc[2]) / 2.0 + 0.05,
+    ]);
+    m.faces[mid] = vec![a, bb, x, d];
+    m.faces.push(vec![bb, c, d, x]);
+    let r = compare("valence 2", &m, 4);
+    eprintln!("valence 2: {} samples, worst {:e}", r.compared, r.worst);
+}
+
+#[test]
+fn triangles_and_ngons() {
+    let r = compare(
+        "triangle and pentagon",
+        &samples::triangle_and_pentagon_mesh(),
+        4,
+    );
+    eprintln!(
+        "triangle and pentagon: {} samples, worst {:e}",
+        r.compared, r.worst
+    );
+    // An open grid with a triangulated quad and a quad pair merged into a hexagon.
+    let mut m = samples::grid(5, 5);
+    let f = m.faces.remove(12);
+    m.faces.push(vec![f[0], f[1], f[2]]);
+    m.faces.push(vec![f[0], f[2], f[3]]);
+    let (g, h) = (m.faces[0].clone(), m.faces[1].clone());
+    m.faces[0] = vec![g[0], h[0], h[1], h[2], g[2], g[3]];
+    m.faces.remove(1);
+    let r = compare("triangulated grid", &m, 4);
+    eprintln!(
+        "triangulated grid: {} samples, worst {:e}",
+        r.compared, r.worst
+    );
+}
+
+#[test]
+fn cube_with_creased_edges_and_a_hole() {
+    let mut m = samples::cube();
+    for f in m.faces.clone().iter().take(1) {
+        for k in 0..4 {
+            m.tags.creases.push(crease(f[k], f[(k + 1) % 4], 2.5));
+        }
+    }
+    m.tags.holes.push(5);
+    let r = compare("creased cube", &m, 5);
+    eprintln!("creased cube: {} samples, worst {:e}", r.compared, r.worst);
+}
