@@ -236,7 +236,6 @@ pub fn build_scheme<R: Scalar>(
             depth,
             eg_tables,
             catmull_clark,
-            ..Default::default()
         },
     )
     .map_err(mesh_err)?;
