@@ -124,8 +124,13 @@ impl SubdivTags {
     /// No crease, corner or hole and the default rules: the mesh is a plain
     /// Catmull-Clark control mesh.
     pub fn is_plain(&self) -> bool {
-        self.creases.iter().all(|c| c.sharpness.is_nan() || c.sharpness <= 0.0)
-            && self.corners.iter().all(|c| c.sharpness.is_nan() || c.sharpness <= 0.0)
+        self.creases
+            .iter()
+            .all(|c| c.sharpness.is_nan() || c.sharpness <= 0.0)
+            && self
+                .corners
+                .iter()
+                .all(|c| c.sharpness.is_nan() || c.sharpness <= 0.0)
             && self.holes.is_empty()
             && self.boundary == BoundaryInterpolation::EdgeAndCorner
     }

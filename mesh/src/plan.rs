@@ -198,11 +198,18 @@ pub struct SurfacePlan<'t> {
     /// with the first reason found.
     pub needed_refinement: Vec<UncoveredFace>,
     /// Faces of the adaptive refinement left as the last hole around an
-    /// irregular vertex (closed by a fan to its limit point).
-    pub last_holes: usize,
+    /// irregular vertex (closed by a fan to its limit point): where each lies
+    /// in the input.
+    pub last_holes: Vec<FaceChart>,
     /// Crease tags on two vertices that share no edge (ignored, as
     /// OpenSubdiv ignores them).
     pub creases_not_edges: usize,
+    /// Patch edges met by patches two or more levels finer (see
+    /// [`crate::adaptive::Adaptive::level_jumps`]).
+    pub level_jumps: usize,
+    /// Patches next to the last holes of two vertices (see
+    /// [`crate::adaptive::Adaptive::hole_conflicts`]).
+    pub hole_conflicts: usize,
     /// Options.
     pub options: PlanOptions<'t>,
 }
@@ -320,8 +327,10 @@ impl<'t> SurfacePlan<'t> {
             ev: Vec::new(),
             uncovered: Vec::new(),
             needed_refinement: needed,
-            last_holes: 0,
+            last_holes: Vec::new(),
             creases_not_edges: 0,
+            level_jumps: 0,
+            hole_conflicts: 0,
             options,
         };
         let level_faces = charts.len();
@@ -489,8 +498,10 @@ impl<'t> SurfacePlan<'t> {
                 hole_point: p.hole_point,
             });
         }
-        self.last_holes += a.hole_faces;
+        self.last_holes.extend(a.holes.iter().map(|h| h.chart));
+        self.hole_conflicts = a.hole_conflicts;
         self.creases_not_edges = base.creases_not_edges;
+        self.level_jumps = a.level_jumps;
         for &face in &a.unresolved_faces {
             self.uncovered.push(UncoveredFace {
                 face,

@@ -21,7 +21,7 @@ pub mod refine;
 pub mod regular;
 
 use crate::chart::{Affine, FaceChart};
-use alloc::collections::BTreeSet;
+use alloc::collections::{BTreeMap, BTreeSet};
 use alloc::vec;
 use alloc::vec::Vec;
 use level::Level;
@@ -56,6 +56,20 @@ pub struct AdaptivePatch {
     pub finer: u8,
 }
 
+/// A face of the refinement left as the last hole around an irregular
+/// vertex, closed by a fan to the vertex's limit point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LastHole {
+    /// Where it lies in the input.
+    pub chart: FaceChart,
+    /// Its corners (working points).
+    pub corners: [u32; 4],
+    /// The vertex (its working point at the hole's level).
+    pub vertex: u32,
+    /// The vertex's limit point (working point).
+    pub point: u32,
+}
+
 /// The adaptive refinement of some faces.
 #[derive(Clone, Debug)]
 pub struct Adaptive {
@@ -63,11 +77,18 @@ pub struct Adaptive {
     pub patches: Vec<AdaptivePatch>,
     /// The points they need beyond the level's own vertices.
     pub points: Points,
-    /// Irregular vertices left as a last hole (one per hole face).
-    pub hole_faces: usize,
+    /// The last holes around irregular vertices, one face of the
+    /// refinement each.
+    pub holes: Vec<LastHole>,
+    /// Patches next to the last holes of two different vertices (only one
+    /// hole point per patch; none seen for depth ≥ 2).
+    pub hole_conflicts: usize,
     /// Input faces with a part that reached the deepest level allowed
     /// without becoming regular or a hole (that part is missing; none seen).
     pub unresolved_faces: Vec<u32>,
+    /// Patch edges met by patches two or more levels finer (the
+    /// tessellation welds only one level of difference; none seen).
+    pub level_jumps: usize,
 }
 
 /// Options of the adaptive refinement.
@@ -90,13 +111,15 @@ pub fn cover(
     let mut out = Adaptive {
         patches: Vec::new(),
         points: Points::new(first_point),
-        hole_faces: 0,
+        holes: Vec::new(),
+        hole_conflicts: 0,
         unresolved_faces: Vec::new(),
+        level_jumps: 0,
     };
     for &(f, chart) in roots {
-        visit(base, f as usize, 0, chart, [NONE; 4], options, &mut out);
+        visit(base, f as usize, 0, chart, options, &mut out);
     }
-    mark_finer(&mut out);
+    mark_neighbours(&mut out);
     out
 }
 
@@ -135,7 +158,6 @@ fn visit(
     f: usize,
     level: u32,
     chart: FaceChart,
-    across_hole: [u32; 4],
     options: AdaptiveOptions,
     out: &mut Adaptive,
 ) {
@@ -145,28 +167,28 @@ fn visit(
     if let Some(gather) = regular_grid(m, f, &mut out.points) {
         let first = m.face_start[f] as usize;
         let corners = core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]);
-        let mut hole = 0u8;
-        let mut hole_point = NONE;
-        for (k, &p) in across_hole.iter().enumerate() {
-            if p != NONE {
-                hole |= 1 << k;
-                hole_point = p;
-            }
-        }
         out.patches.push(AdaptivePatch {
             gather,
             chart,
             level,
             corners,
-            hole,
-            hole_point,
+            hole: 0,
+            hole_point: NONE,
             finer: 0,
         });
         return;
     }
-    if final_hole(m, f, level, options).is_some() {
-        out.hole_faces += 1;
-        return;
+    if let Some(v) = final_hole(m, f, level, options) {
+        if let Some(point) = limit_point(m, v, &mut out.points) {
+            let first = m.face_start[f] as usize;
+            out.holes.push(LastHole {
+                chart,
+                corners: core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]),
+                vertex: m.point[v],
+                point,
+            });
+            return;
+        }
     }
     if level >= options.depth.max(1) + EXTRA_LEVELS {
         out.unresolved_faces.push(chart.face);
@@ -187,14 +209,6 @@ fn visit(
     let cm = &child.level;
     let n = m.face(f).len();
     let first = child.first[at] as usize;
-    // Which children are last holes, and their vertex's limit point.
-    let holes: Vec<u32> = (0..n)
-        .map(|k| {
-            final_hole(cm, first + k, level + 1, options)
-                .and_then(|v| limit_point(cm, v, &mut out.points))
-                .unwrap_or(NONE)
-        })
-        .collect();
     for k in 0..n {
         let sub = if n == 4 || chart.corner.is_some() {
             FaceChart {
@@ -209,43 +223,97 @@ fn visit(
                 map: Affine::IDENTITY,
             }
         };
-        // Child k = (vertex child, next edge child, face child, previous
-        // edge child): its edges 0 and 3 lie on the parent's edges k and
-        // k − 1, edges 1 and 2 border children k + 1 and k − 1.
-        let across = [
-            across_hole[k.min(3)],
-            holes[(k + 1) % n],
-            holes[(k + n - 1) % n],
-            across_hole[((k + n - 1) % n).min(3)],
-        ];
-        let across = if n == 4 {
-            across
-        } else {
-            // A non-quad at the analysed level has no neighbour holes yet.
-            [NONE, across[1], across[2], NONE]
-        };
-        visit(cm, first + k, level + 1, sub, across, options, out);
+        visit(cm, first + k, level + 1, sub, options, out);
     }
 }
 
-/// Sets [`AdaptivePatch::finer`]: an edge `(a, b)` whose neighbour across
-/// is refined once more has the edges `(a', m)` and `(m, b')` of the child
-/// points `a'`, `b'` of `a`, `b` and `m` of the edge.
-fn mark_finer(out: &mut Adaptive) {
+/// Sets [`AdaptivePatch::finer`] and [`AdaptivePatch::hole`] from the
+/// patches' and holes' edges, named by their end points: an edge `(a, b)`
+/// whose neighbour across is refined once more meets the edges `(a', m)`
+/// and `(m, b')` of the child points `a'`, `b'` of `a`, `b` and `m` of the
+/// edge; an edge of a last hole, or half of one (where the faces around an
+/// irregular vertex stop at two levels, as semi-sharp features make them),
+/// borders that hole.
+fn mark_neighbours(out: &mut Adaptive) {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    // Edge → (vertex at the coarsest level its holes have, limit point).
+    let mut hole_edges: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for (i, h) in out.holes.iter().enumerate() {
+        for k in 0..4 {
+            let (a, b) = (h.corners[k], h.corners[(k + 1) % 4]);
+            hole_edges.insert(key(a, b), i);
+            if let Some(((a1, m), (m2, b1))) = halves(&out.points, a, b) {
+                hole_edges.insert(key(a1, m), i);
+                hole_edges.insert(key(m2, b1), i);
+            }
+        }
+    }
+    // The holes around one vertex may stop at two levels: the same vertex
+    // (one the other's vertex child), limit points equal up to round-off.
+    let same_vertex = |x: u32, y: u32| {
+        let descends = |mut from: u32, to: u32| {
+            for _ in 0..=EXTRA_LEVELS + 2 {
+                if from == to {
+                    return true;
+                }
+                match out.points.get(&Key::Vertex(from)) {
+                    Some(c) => from = c,
+                    None => return false,
+                }
+            }
+            false
+        };
+        descends(x, y) || descends(y, x)
+    };
+    let mut conflicts = 0;
+    for p in &mut out.patches {
+        let mut vertex = NONE;
+        for k in 0..4 {
+            let (a, b) = (p.corners[k], p.corners[(k + 1) % 4]);
+            if let Some(&i) = hole_edges.get(&key(a, b)) {
+                let h = &out.holes[i];
+                if p.hole != 0 && !same_vertex(vertex, h.vertex) {
+                    conflicts += 1;
+                    continue;
+                }
+                p.hole |= 1 << k;
+                p.hole_point = h.point;
+                vertex = h.vertex;
+            }
+        }
+    }
+    out.hole_conflicts = conflicts;
     let edges: BTreeSet<(u32, u32)> = out
         .patches
         .iter()
         .flat_map(|p| (0..4).map(move |k| key(p.corners[k], p.corners[(k + 1) % 4])))
         .collect();
+    let mut jumps = 0;
     for p in &mut out.patches {
         for k in 0..4 {
             let (a, b) = (p.corners[k], p.corners[(k + 1) % 4]);
             if finer_across(&out.points, &edges, a, b) {
                 p.finer |= 1 << k;
+            } else if let Some(((a1, m), (m2, b1))) = halves(&out.points, a, b) {
+                // Not met by halves: is it met by quarters?
+                if finer_across(&out.points, &edges, a1, m)
+                    || finer_across(&out.points, &edges, m2, b1)
+                {
+                    jumps += 1;
+                }
             }
         }
     }
+    out.level_jumps = jumps;
+}
+
+/// The child edges of edge `(a, b)`, if its points were made.
+fn halves(points: &Points, a: u32, b: u32) -> Option<((u32, u32), (u32, u32))> {
+    let m = points.get(&Key::Edge(a.min(b), a.max(b)))?;
+    Some((
+        (points.get(&Key::Vertex(a))?, m),
+        (m, points.get(&Key::Vertex(b))?),
+    ))
 }
 
 /// Whether the edge `(a, b)` is met by two half-size patch edges.

@@ -1,0 +1,291 @@
+//! The adaptive refinement's surface as a whole, in both modes (default:
+//! C²PS and EG caps where no tag reaches; and every cap Catmull-Clark):
+//! - coverage: per input face (per corner sub-square of a non-quad), the
+//!   patches' domains, the adaptive last holes and the caps' last holes add
+//!   up to the face's square exactly (0 for a hole face);
+//! - the welded tessellation of a closed input is closed and consistently
+//!   oriented, across every level transition the refinement makes (so no
+//!   edge of a patch meets patches more than one level finer, and the finer
+//!   bits are right); an open input's tessellation has as many boundary
+//!   loops as the input has boundary and hole loops;
+//! - in the default mode, EG and C²PS caps stay where their configuration
+//!   has no tag, and the faces whose configuration a tag reaches are
+//!   Catmull-Clark with OpenSubdiv's rules (checked against OpenSubdiv in
+//!   `osd_surface.rs`).
+
+mod common;
+
+use capdiv::Point3;
+use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, TessPatch};
+use capdiv_mesh::{
+    samples, EdgeCrease, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan,
+    VertexCorner,
+};
+use common::Collect;
+use std::collections::HashMap;
+
+fn plan_and_evaluate(m: &MeshInput, depth: u32, cc: bool) -> (SurfacePlan<'static>, Collect<f64>) {
+    let plan = SurfacePlan::for_mesh(
+        m,
+        PlanOptions {
+            depth,
+            catmull_clark: cc,
+            ..Default::default()
+        },
+    )
+    .expect("plan");
+    assert!(plan.uncovered.is_empty(), "uncovered {:?}", plan.uncovered);
+    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+    let mut c = Collect::default();
+    ev.evaluate(&plan, &m.vertices, &mut c).expect("evaluate");
+    (plan, c)
+}
+
+fn det(m: &capdiv_mesh::chart::Affine) -> f64 {
+    (m.du[0] * m.dv[1] - m.du[1] * m.dv[0]).abs()
+}
+
+/// Per (input face, corner): area covered by patches and holes.
+fn coverage(plan: &SurfacePlan<'_>, c: &Collect<f64>) -> HashMap<(u32, Option<u8>), f64> {
+    let mut area: HashMap<(u32, Option<u8>), f64> = HashMap::new();
+    for p in &c.patches {
+        assert_ne!(
+            p.kind,
+            PatchKind::Polar,
+            "coverage is checked on meshes without poles"
+        );
+        let [u0, u1, v0, v1] = p.domain;
+        *area.entry((p.face, p.corner)).or_default() += (u1 - u0) * (v1 - v0);
+    }
+    for h in &plan.last_holes {
+        *area.entry((h.face, h.corner)).or_default() += det(&h.map);
+    }
+    // A cap's last hole: the central 2^-depth square of each sector.
+    let side = 0.5f64.powi(plan.options.depth as i32);
+    for e in &plan.ev {
+        for s in &e.sectors {
+            *area.entry((s.face, s.corner)).or_default() += det(&s.map) * side * side;
+        }
+    }
+    area
+}
+
+fn check_coverage(name: &str, m: &MeshInput, plan: &SurfacePlan<'_>, c: &Collect<f64>) {
+    let area = coverage(plan, c);
+    for (f, face) in m.faces.iter().enumerate() {
+        let hole = m.tags.holes.contains(&(f as u32));
+        let parts: Vec<Option<u8>> = if face.len() == 4 {
+            vec![None]
+        } else {
+            (0..face.len() as u8).map(Some).collect()
+        };
+        for corner in parts {
+            let a = area.get(&(f as u32, corner)).copied().unwrap_or(0.0);
+            let want = if hole { 0.0 } else { 1.0 };
+            assert!(
+                (a - want).abs() <= 1e-12,
+                "{name}: face {f} corner {corner:?} covered {a}, want {want}"
+            );
+        }
+    }
+}
+
+fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {
+    let patches = c.patches.iter().map(|p| TessPatch {
+        geometry: p.geometry,
+        finer: p.finer,
+        hole: p.hole,
+        hole_point: p.hole_point,
+        tag: p.face,
+    });
+    tessellate(patches, 3, 1e-9)
+}
+
+/// Boundary loops of a tessellation: boundary edges (used once) chained.
+fn boundary_loops(faces: &[capdiv_mesh::tessellate::Face]) -> usize {
+    let mut count: HashMap<(u32, u32), i32> = HashMap::new();
+    for f in faces {
+        let c = f.corners();
+        for k in 0..c.len() {
+            let (a, b) = (c[k], c[(k + 1) % c.len()]);
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let boundary: Vec<(u32, u32)> = count
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(e, _)| e)
+        .collect();
+    // Union-find over boundary vertices.
+    let mut parent: HashMap<u32, u32> = HashMap::new();
+    fn find(p: &mut HashMap<u32, u32>, x: u32) -> u32 {
+        let y = *p.entry(x).or_insert(x);
+        if y == x {
+            x
+        } else {
+            let r = find(p, y);
+            p.insert(x, r);
+            r
+        }
+    }
+    for &(a, b) in &boundary {
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        if ra != rb {
+            parent.insert(ra, rb);
+        }
+    }
+    let keys: Vec<u32> = parent.keys().copied().collect();
+    let mut roots: Vec<u32> = keys.into_iter().map(|k| find(&mut parent, k)).collect();
+    roots.sort_unstable();
+    roots.dedup();
+    roots.len()
+}
+
+fn crease(a: u32, b: u32, s: f32) -> EdgeCrease {
+    EdgeCrease {
+        vertices: [a, b],
+        sharpness: s,
+    }
+}
+
+/// Closed meshes with features: creases of several sharpness, corners,
+/// triangles and pentagons, extraordinary points.
+fn closed_cases() -> Vec<(&'static str, MeshInput)> {
+    let mut creased_cube = samples::cube();
+    for k in 0..4 {
+        let f = creased_cube.faces[0].clone();
+        creased_cube
+            .tags
+            .creases
+            .push(crease(f[k], f[(k + 1) % 4], [0.5, 1.0, 2.5, 10.0][k]));
+    }
+    creased_cube.tags.corners.push(VertexCorner {
+        vertex: creased_cube.faces[5][0],
+        sharpness: 3.0,
+    });
+    let mut chaikin = creased_cube.clone();
+    chaikin.tags.crease_method = capdiv_mesh::CreaseMethod::Chaikin;
+    let mut torus = samples::torus(8, 6);
+    for i in 0..8u32 {
+        // A crease ring around the tube, sharpness rising along it.
+        torus
+            .tags
+            .creases
+            .push(crease(i * 6, ((i + 1) % 8) * 6, 0.5 + i as f32));
+    }
+    let mut rounded = samples::rounded_cube(3);
+    rounded
+        .tags
+        .creases
+        .push(crease(rounded.faces[0][0], rounded.faces[0][1], 10.0));
+    vec![
+        ("creased cube", creased_cube),
+        ("creased cube, Chaikin", chaikin),
+        ("creased torus", torus),
+        (
+            "triangle and pentagon",
+            samples::triangle_and_pentagon_mesh(),
+        ),
+        ("rounded cube with one sharp edge", rounded),
+        ("two-beam corner", samples::two_beam_corner()),
+    ]
+}
+
+#[test]
+fn closed_inputs_are_covered_and_tessellate_closed_in_both_modes() {
+    for (name, m) in closed_cases() {
+        for cc in [false, true] {
+            for depth in [2, 4] {
+                let (plan, c) = plan_and_evaluate(&m, depth, cc);
+                let deepest = c.patches.iter().map(|p| p.level).max().unwrap();
+                assert_eq!(plan.level_jumps, 0, "{name} (cc {cc}, depth {depth})");
+                assert_eq!(plan.hole_conflicts, 0, "{name} (cc {cc}, depth {depth})");
+                check_coverage(name, &m, &plan, &c);
+                let t = tess(&c);
+                assert_eq!(t.degenerate_dropped, 0, "{name}");
+                is_closed_and_oriented(&t.faces).unwrap_or_else(|e| {
+                    panic!("{name} (cc {cc}, depth {depth}, deepest level {deepest}): {e:?}")
+                });
+            }
+        }
+    }
+}
+
+#[test]
+fn open_inputs_keep_their_boundary_and_hole_loops() {
+    let mut holed = samples::grid(6, 6);
+    holed.tags.holes = vec![14, 15, 21];
+    holed.tags.creases.push(crease(9, 10, 2.0));
+    let mut fan = samples::extraordinary_disk(5, 3);
+    fan.tags.creases.push(crease(0, 1, 10.0));
+    let mut corner_hole = samples::grid(4, 4);
+    corner_hole.tags.holes = vec![0];
+    let cases: Vec<(&str, MeshInput, usize)> = vec![
+        ("grid", samples::grid(4, 3), 1),
+        // One boundary and one interior hole of three faces.
+        ("grid with holes", holed, 2),
+        ("disk with a dart", fan, 1),
+        // A hole at the corner merges with the boundary.
+        ("grid, corner hole", corner_hole, 1),
+    ];
+    for (name, m, loops) in cases {
+        for cc in [false, true] {
+            let (plan, c) = plan_and_evaluate(&m, 3, cc);
+            check_coverage(name, &m, &plan, &c);
+            let t = tess(&c);
+            assert_eq!(boundary_loops(&t.faces), loops, "{name} (cc {cc})");
+        }
+    }
+}
+
+#[test]
+fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
+    // Two-beam corner: EG caps at valence 3 and 5. A crease on an edge of
+    // one extraordinary point's 1-ring takes that cap away, no other.
+    let m = samples::two_beam_corner();
+    let (plain, _) = plan_and_evaluate(&m, 3, false);
+    let eg = |p: &SurfacePlan<'_>| p.ev.iter().filter(|e| e.scheme == Scheme::Eg).count();
+    assert!(eg(&plain) >= 2);
+    let v = plain.ev[0].vertex.expect("an input vertex");
+    let w = m
+        .faces
+        .iter()
+        .find_map(|f| {
+            let k = f.iter().position(|&x| x == v)?;
+            Some(f[(k + 1) % f.len()])
+        })
+        .unwrap();
+    let mut tagged = m.clone();
+    tagged.tags.creases.push(crease(v, w, 2.0));
+    let (plan, c) = plan_and_evaluate(&tagged, 3, false);
+    assert!(
+        plan.ev.iter().all(|e| e.vertex != Some(v)),
+        "cap at the crease kept"
+    );
+    assert!(
+        eg(&plan) >= 1 && eg(&plan) < eg(&plain),
+        "{} of {}",
+        eg(&plan),
+        eg(&plain)
+    );
+    check_coverage("two-beam corner with a crease", &tagged, &plan, &c);
+    // A globe: both poles keep C²PS when a crease runs along the equator.
+    let mut globe = samples::globe(8, 6);
+    let eq: Vec<u32> = (0..globe.vertices.len() as u32)
+        .filter(|&i| globe.vertices[i as usize][2].abs() < 1e-9)
+        .collect();
+    assert!(eq.len() >= 8, "equator found");
+    for f in globe.faces.clone() {
+        for k in 0..f.len() {
+            let (a, b) = (f[k], f[(k + 1) % f.len()]);
+            if eq.contains(&a) && eq.contains(&b) && a < b {
+                globe.tags.creases.push(crease(a, b, 10.0));
+            }
+        }
+    }
+    let (plan, c) = plan_and_evaluate(&globe, 3, false);
+    assert_eq!(plan.polar.len(), 2, "C2PS at both poles");
+    let t = tess(&c);
+    is_closed_and_oriented(&t.faces).expect("globe with a sharp equator closed");
+    let _ = Point3::<f64>::ZERO;
+}
