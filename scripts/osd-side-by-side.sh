@@ -82,7 +82,7 @@ if [ "$perf" = 1 ] && command -v perf >/dev/null; then
         perf report -i "$data" --no-children --sort symbol --stdio -g none 2>/dev/null |
             grep -v '^#' | grep -v '^$' | awk 'NR <= 8' | tidy
         echo
-        echo "Including callees, capdiv's functions:"
+        echo "Including callees (first column; self second), capdiv's functions:"
         echo
         perf report -i "$data" --children --sort symbol --stdio -g none 2>/dev/null |
             grep 'capdiv_mesh::' | awk 'NR <= 8' | tidy
