@@ -77,6 +77,11 @@ pub enum CliError {
         /// The input's name.
         source: String,
     },
+    /// The surface has no patch (every face a hole).
+    EmptySurface {
+        /// The input's name.
+        source: String,
+    },
 }
 
 impl CliError {
@@ -113,6 +118,10 @@ impl fmt::Display for CliError {
             CliError::NonFiniteResult { source } => write!(
                 f,
                 "{source}: a result coordinate is not finite (input too large for the precision)"
+            ),
+            CliError::EmptySurface { source } => write!(
+                f,
+                "{source}: the surface is empty (every face is a hole, or the boundary rule 'none' removed them all)"
             ),
         }
     }

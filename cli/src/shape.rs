@@ -28,7 +28,6 @@ use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
-    Topology,
 };
 
 /// One patch of a [`Shape`].
@@ -379,9 +378,8 @@ fn mesh_shape(
         source: name.to_string(),
         error,
     };
-    let topo = Topology::new(mesh).map_err(mesh_err)?;
-    let plan = SurfacePlan::new(
-        &topo,
+    let plan = SurfacePlan::for_mesh(
+        mesh,
         PlanOptions {
             depth,
             catmull_clark,

@@ -649,6 +649,34 @@ fn expect_failure(dir: &Path, label: &str, content: &[u8], extra: &[&str], needl
     assert!(!out.exists(), "{label}: output file written");
 }
 
+/// Meshes OpenSubdiv takes and capdiv once refused: a non-manifold edge
+/// (infinitely sharp) and two faces running an edge the same way.
+#[test]
+fn non_manifold_and_inconsistent_meshes_give_a_surface() {
+    let dir = tempdir();
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n";
+    for (label, content) in [
+        (
+            "non-manifold-edge",
+            format!("{tri}v 0 0 1\nv 0 0 -1\nf 1 2 3\nf 2 1 5\nf 2 1 4\n"),
+        ),
+        ("inconsistent", format!("{tri}f 1 2 3\nf 1 2 4\n")),
+    ] {
+        let input = dir.path().join(format!("{label}.obj"));
+        std::fs::write(&input, content).unwrap();
+        let out = dir.path().join(format!("{label}.json"));
+        let run = capdiv(&["surface", "-o", s(&out), s(&input)], None);
+        assert_eq!(run.code, Some(0), "{label}: {}", run.stderr);
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        assert!(!json["patches"].as_array().unwrap().is_empty(), "{label}");
+        assert!(
+            json["summary"]["uncovered"].as_array().unwrap().is_empty(),
+            "{label}"
+        );
+    }
+}
+
 #[test]
 fn bad_meshes_fail_cleanly() {
     let dir = tempdir();
@@ -674,16 +702,6 @@ fn bad_meshes_fail_cleanly() {
             "repeated",
             format!("{tri}f 1 2 3\nf 2 4 4 3\n"),
             "face 1 lists vertex 3",
-        ),
-        (
-            "non-manifold-edge",
-            format!("{tri}v 0 0 1\nv 0 0 -1\nf 1 2 3\nf 2 1 5\nf 2 1 4\n"),
-            "face 2 is a third face on edge",
-        ),
-        (
-            "inconsistent",
-            format!("{tri}f 1 2 3\nf 1 2 4\n"),
-            "face 1 runs edge 0-1",
         ),
         (
             "nan",
@@ -985,4 +1003,79 @@ fn domains_follow_the_parameter_conventions() {
         }
     }
     assert_eq!(checked, 2 * 2 * 8, "two spokes of 8 triangles at 2 poles");
+}
+
+/// An empty surface is an error, never a blank picture: every face a hole,
+/// or the boundary rule `none` on a mesh whose faces all touch the boundary.
+#[test]
+fn an_empty_surface_is_an_error() {
+    let dir = tempdir();
+    let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    expect_failure(
+        dir.path(),
+        "all-holes",
+        format!("{quad}t hole 1/0/0 0\n").as_bytes(),
+        &[],
+        "empty",
+    );
+    expect_failure(
+        dir.path(),
+        "boundary-none",
+        quad.as_bytes(),
+        &["--boundary", "none"],
+        "empty",
+    );
+    expect_failure(
+        dir.path(),
+        "boundary-none-png",
+        quad.as_bytes(),
+        &["--boundary", "none", "--format", "png"],
+        "empty",
+    );
+}
+
+/// The summary says per level how many patches there are, and why a cap
+/// fell back: an EG configuration with a crease in it.
+#[test]
+fn summary_reports_levels_and_fallbacks() {
+    let dir = tempdir();
+    let m = capdiv_mesh::samples::two_beam_corner();
+    let mut obj = String::new();
+    for p in &m.vertices {
+        obj.push_str(&format!("v {} {} {}\n", p[0], p[1], p[2]));
+    }
+    for f in &m.faces {
+        let idx: Vec<String> = f.iter().map(|v| (v + 1).to_string()).collect();
+        obj.push_str(&format!("f {}\n", idx.join(" ")));
+    }
+    // A crease on the first edge of the first face (0-based vertex numbers).
+    obj.push_str(&format!(
+        "t crease 2/1/0 {} {} 2.0\n",
+        m.faces[0][0], m.faces[0][1]
+    ));
+    let input = dir.path().join("beams.obj");
+    std::fs::write(&input, obj).unwrap();
+    let out = dir.path().join("beams.json");
+    let run = capdiv(&["surface", "-o", s(&out), s(&input)], None);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(
+        run.stderr.contains("patches per level 0: "),
+        "{}",
+        run.stderr
+    );
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let levels = json["summary"]["patches_per_level"].as_array().unwrap();
+    let total: u64 = levels.iter().map(|n| n.as_u64().unwrap()).sum();
+    assert_eq!(total as usize, json["patches"].as_array().unwrap().len());
+    assert!(levels.len() > 1, "adaptive levels below the input");
+    let fallbacks = json["summary"]["fallbacks"].as_array().unwrap();
+    assert!(
+        fallbacks.iter().any(|f| f["reason"] == "feature"),
+        "a cap fell back for the crease: {fallbacks:?}"
+    );
+    assert!(
+        run.stderr.contains("fallback     Catmull-Clark at"),
+        "{}",
+        run.stderr
+    );
 }

@@ -197,6 +197,10 @@ pub struct SurfacePlan<'t> {
     /// Input faces whose neighbourhood made the refinement step necessary,
     /// with the first reason found.
     pub needed_refinement: Vec<UncoveredFace>,
+    /// Vertices of the analysed level where a cap's configuration (a polar
+    /// fan, an extraordinary point) is but no cap was made, and why; their
+    /// faces are Catmull-Clark by adaptive refinement.
+    pub fallbacks: Vec<(u32, Reason)>,
     /// Faces of the adaptive refinement left as the last hole around an
     /// irregular vertex (closed by a fan to its limit point): where each lies
     /// in the input.
@@ -221,6 +225,9 @@ struct Pass {
     ev: Vec<(EvConfig, Scheme, Option<usize>)>,
     /// Per face of the level: the reason it is uncovered, if it is.
     uncovered: Vec<Option<Reason>>,
+    /// Vertices with a cap configuration type (a fan, an extraordinary
+    /// point) but no cap, and why.
+    fallbacks: Vec<(u32, Reason)>,
 }
 
 impl<'t> SurfacePlan<'t> {
@@ -273,6 +280,7 @@ impl<'t> SurfacePlan<'t> {
                 polar: Vec::new(),
                 ev: Vec::new(),
                 uncovered: vec![Some(Reason::Feature); input_faces],
+                fallbacks: Vec::new(),
             },
         };
         // Whole-mesh steps only for meshes without tags: the step has no
@@ -328,6 +336,7 @@ impl<'t> SurfacePlan<'t> {
             uncovered: Vec::new(),
             needed_refinement: needed,
             last_holes: Vec::new(),
+            fallbacks: pass.fallbacks.clone(),
             creases_not_edges: 0,
             level_jumps: 0,
             hole_conflicts: 0,
@@ -351,22 +360,25 @@ impl<'t> SurfacePlan<'t> {
         if let Some(level_topo) = &level_topo {
             plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
         }
-        // Every other face: adaptive refinement over the analysed level.
-        let base = match tagged {
-            Some(b) => b,
-            None => {
-                let t = level_topo.as_ref().ok_or(MeshError::Empty)?;
-                plain_base(t)
-            }
-        };
-        let roots: Vec<(u32, FaceChart)> = pass
-            .uncovered
-            .iter()
-            .enumerate()
-            .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
-            .map(|(f, _)| (f as u32, charts[f]))
-            .collect();
-        plan.push_adaptive(&base, &roots, &cap_face);
+        // Every other face: adaptive refinement over the analysed level
+        // (its base level built only when some face needs it).
+        if pass.uncovered.iter().any(Option::is_some) {
+            let base = match tagged {
+                Some(b) => b,
+                None => {
+                    let t = level_topo.as_ref().ok_or(MeshError::Empty)?;
+                    plain_base(t)
+                }
+            };
+            let roots: Vec<(u32, FaceChart)> = pass
+                .uncovered
+                .iter()
+                .enumerate()
+                .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
+                .map(|(f, _)| (f as u32, charts[f]))
+                .collect();
+            plan.push_adaptive(&base, &roots, &cap_face);
+        }
         Ok(plan)
     }
 
@@ -625,6 +637,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
         polar: Vec::new(),
         ev: Vec::new(),
         uncovered: Vec::new(),
+        fallbacks: Vec::new(),
     };
     // Per vertex: the reason its cap failed (for the faces around it).
     let mut vertex_reason: Vec<Option<Reason>> = vec![None; t.num_vertices()];
@@ -728,13 +741,18 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
         });
     }
     pass.uncovered = owner;
+    pass.fallbacks = vertex_reason
+        .iter()
+        .enumerate()
+        .filter_map(|(v, r)| r.map(|r| (v as u32, r)))
+        .collect();
     pass
 }
 
 /// OpenSubdiv's refusals, in this order: no faces or vertices, more than
 /// 2³¹ items, a non-finite coordinate, then per face fewer than 3 vertices or
-/// an index out of range, then tags naming a vertex or face that does not
-/// exist.
+/// an index out of range (and, unlike OpenSubdiv, a vertex listed twice),
+/// then tags naming a vertex or face that does not exist.
 fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
     let nv = mesh.vertices.len();
     let nf = mesh.faces.len();
@@ -762,6 +780,14 @@ fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
                 face,
                 index: i64::from(index),
                 vertices: nv,
+            });
+        }
+        // OpenSubdiv takes these, but its treatment of the degenerate edges
+        // they make is not reproduced here: refused.
+        if let Some(k) = (1..f.len()).find(|&k| f[..k].contains(&f[k])) {
+            return Err(MeshError::RepeatedVertex {
+                face,
+                vertex: f[k] as usize,
             });
         }
     }

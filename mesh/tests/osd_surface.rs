@@ -476,3 +476,13 @@ fn cube_with_creased_edges_and_a_hole() {
     let r = compare("creased cube", &m, 5);
     eprintln!("creased cube: {} samples, worst {:e}", r.compared, r.worst);
 }
+
+#[test]
+fn a_face_with_the_other_orientation() {
+    // One face of a grid listed clockwise: its four edges are run twice the
+    // same way, which OpenSubdiv takes as non-manifold (infinitely sharp).
+    let mut m = samples::grid(5, 5);
+    m.faces[12].reverse();
+    let r = compare("reversed face", &m, 4);
+    eprintln!("reversed face: {} samples, worst {:e}", r.compared, r.worst);
+}

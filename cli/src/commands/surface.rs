@@ -228,10 +228,9 @@ pub fn build_scheme<R: Scalar>(
         error,
     };
     let start = Instant::now();
-    let topo = Topology::new(mesh).map_err(mesh_err)?;
     let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
-    let plan = SurfacePlan::new(
-        &topo,
+    let plan = SurfacePlan::for_mesh(
+        mesh,
         PlanOptions {
             depth,
             eg_tables,
@@ -260,6 +259,11 @@ pub fn build_scheme<R: Scalar>(
         && sink.caps.iter().all(|c| c.limit.is_finite());
     if !finite {
         return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    if sink.patches.is_empty() {
+        return Err(CliError::EmptySurface {
             source: name.to_string(),
         });
     }
@@ -303,7 +307,7 @@ pub fn build_scheme<R: Scalar>(
         input: InputSummary {
             vertices: plan.input_vertices,
             faces: plan.input_faces,
-            closed: topo.is_closed(),
+            closed: mesh.tags.holes.is_empty() && Topology::new(mesh).is_ok_and(|t| t.is_closed()),
         },
         depth,
         precision: precision.to_string(),
@@ -319,6 +323,32 @@ pub fn build_scheme<R: Scalar>(
         refinement_steps: plan.steps.len(),
         needed_refinement: reasons(&plan.needed_refinement),
         uncovered: reasons(&plan.uncovered),
+        patches_per_level: {
+            let mut levels = vec![
+                0usize;
+                1 + sink
+                    .patches
+                    .iter()
+                    .map(|p| p.level as usize)
+                    .max()
+                    .unwrap_or(0)
+            ];
+            for p in &sink.patches {
+                levels[p.level as usize] += 1;
+            }
+            levels
+        },
+        last_holes: plan.last_holes.len(),
+        fallbacks: plan
+            .fallbacks
+            .iter()
+            .filter(|(v, _)| (*v as usize) < plan.input_vertices)
+            .map(|&(vertex, r)| Fallback {
+                vertex: vertex + 1,
+                reason: r.id(),
+                description: r.describe(),
+            })
+            .collect(),
         times_ms: Times {
             analysis: analysis.as_secs_f64() * 1e3,
             evaluation: evaluation.as_secs_f64() * 1e3,
@@ -453,8 +483,27 @@ pub struct Summary {
     pub needed_refinement: Vec<FaceReason>,
     /// Input faces left without a patch.
     pub uncovered: Vec<FaceReason>,
+    /// Patches per subdivision level relative to the input (index = level).
+    pub patches_per_level: Vec<usize>,
+    /// Faces of the adaptive refinement left as the last hole around an
+    /// irregular vertex (closed by fans in the OBJ).
+    pub last_holes: usize,
+    /// Vertices where a C²PS or EG configuration type is but the cap fell
+    /// back to Catmull-Clark, and why (1-based vertex numbers, as in OBJ).
+    pub fallbacks: Vec<Fallback>,
     /// Wall-clock times (vary from run to run).
     pub times_ms: Times,
+}
+
+/// A vertex whose cap fell back to Catmull-Clark.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fallback {
+    /// The vertex, 1-based.
+    pub vertex: u32,
+    /// Reason identifier.
+    pub reason: &'static str,
+    /// What it means.
+    pub description: &'static str,
 }
 
 /// The subdivision tags of the input (after `--boundary`).
@@ -811,6 +860,41 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
         s.uncovered.len(),
         faces_by_reason(&s.uncovered, ":")
     );
+    let levels: Vec<String> = s
+        .patches_per_level
+        .iter()
+        .enumerate()
+        .filter(|(_, &n)| n > 0)
+        .map(|(l, n)| format!("{l}: {n}"))
+        .collect();
+    let _ = writeln!(
+        t,
+        "  levels       patches per level {}; {} last hole(s) closed by fans",
+        levels.join(", "),
+        s.last_holes
+    );
+    if !s.fallbacks.is_empty() {
+        let mut by: Vec<(&str, Vec<u32>)> = Vec::new();
+        for f in &s.fallbacks {
+            match by.iter_mut().find(|(d, _)| *d == f.description) {
+                Some((_, v)) => v.push(f.vertex),
+                None => by.push((f.description, vec![f.vertex])),
+            }
+        }
+        let text: Vec<String> = by
+            .iter()
+            .map(|(d, vs)| {
+                let shown: Vec<String> = vs.iter().take(8).map(|v| v.to_string()).collect();
+                let more = if vs.len() > 8 {
+                    format!(" and {} more", vs.len() - 8)
+                } else {
+                    String::new()
+                };
+                format!("{} vertex(es) ({}{more}): {d}", vs.len(), shown.join(", "))
+            })
+            .collect();
+        let _ = writeln!(t, "  fallback     Catmull-Clark at {}", text.join("; "));
+    }
     if let Some(i) = tess {
         let _ = writeln!(
             t,

@@ -32,6 +32,11 @@ use regular::{corner_is_regular, regular_grid};
 /// "No point".
 pub const NONE: u32 = u32::MAX;
 
+/// The shallowest level a last hole may have: at level 1 every child of a
+/// face with irregular corners can be a hole (a single quad's four corners),
+/// leaving no ring at all.
+const MIN_HOLE_LEVEL: u32 = 2;
+
 /// Levels a semi-sharp feature may need beyond `depth` (sharpness below 10
 /// decays in 10 levels).
 const EXTRA_LEVELS: u32 = 11;
@@ -142,7 +147,7 @@ fn irregular_corners(m: &Level, f: usize) -> (u32, bool) {
 /// If face `f` at `level` is the last hole around one irregular vertex: that
 /// vertex.
 fn final_hole(m: &Level, f: usize, level: u32, options: AdaptiveOptions) -> Option<usize> {
-    if level < options.depth.max(1) || m.face(f).len() != 4 || m.hole[f] {
+    if level < options.depth.max(MIN_HOLE_LEVEL) || m.face(f).len() != 4 || m.hole[f] {
         return None;
     }
     let (bits, semi) = irregular_corners(m, f);
@@ -190,7 +195,7 @@ fn visit(
             return;
         }
     }
-    if level >= options.depth.max(1) + EXTRA_LEVELS {
+    if level >= options.depth.max(MIN_HOLE_LEVEL) + EXTRA_LEVELS {
         out.unresolved_faces.push(chart.face);
         return;
     }
