@@ -1,11 +1,28 @@
-//! The mesh pipeline: OBJ text (`obj::parse_obj`) or a face list built from
-//! the bytes (arbitrary sizes and indices, or a sample mesh with mutations),
-//! through `Topology::new`, `SurfacePlan::new` (depth 1–2), `Evaluator`
-//! (f64 or f32, by a bit of the first byte), `tessellate` and
-//! `is_closed_and_oriented` (up to 96 patches).
+//! The mesh pipeline with OpenSubdiv's subdivision tags: OBJ text
+//! (`obj::parse_obj`, tag lines `t crease|corner|hole|interpolateboundary|
+//! creasemethod …` included) or a face list built from the bytes (arbitrary
+//! sizes and indices — non-manifold edges, bowties, repeated vertices in a
+//! face, valence-2 vertices — or a sample mesh with mutations) with arbitrary
+//! tags (creases, corners, holes, boundary rule, crease method; sharpness any
+//! `f32`, indices sometimes out of range), through `SurfacePlan::for_mesh`
+//! (depth 1–3, `catmull_clark` on or off), `Evaluator` (f64 or f32, by a bit
+//! of the first byte), `tessellate` and `is_closed_and_oriented`. A bit of the
+//! first byte also runs the tagless path `Topology::new` + `SurfacePlan::new`.
 //!
-//! Oracle: no panic; every failure a typed `MeshError` / `EvalError`; every
-//! successful evaluation is finite (any magnitude).
+//! First byte: bit 0 OBJ text (0) or face list (1); bit 1 `catmull_clark`;
+//! bits 2–3 depth (1, 2, 3, 2); bit 4 tessellation grid 1 or 2; bit 5 f32;
+//! bit 6 also `SurfacePlan::new`.
+//!
+//! Oracle: no panic; every failure a typed `MeshError` / `EvalError`;
+//! `for_mesh` succeeds on every mesh it documents as accepted (faces of ≥ 3
+//! in-range vertices, finite positions, tag indices in range) and leaves no
+//! face uncovered; every successful evaluation is finite (any magnitude);
+//! the tessellation (up to 2000 patches) indexes its own vertices; and when
+//! the input is a closed, consistently oriented manifold (`Topology::new`
+//! succeeds, `is_closed`) without hole tags, the f64 surface at generic
+//! vertex positions tessellates to a closed, consistently oriented mesh.
+//! Work is bounded: at most 200 vertices, 200 faces, 800 corners, 40 tags,
+//! and evaluation only of plans with at most 4000 patches and caps.
 #![no_main]
 
 use arbitrary::{Result, Unstructured};
@@ -14,8 +31,8 @@ use capdiv_fuzz::FuzzReal;
 use capdiv_mesh::obj::parse_obj;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry, TessPatch};
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
-    Topology,
+    samples, BoundaryInterpolation, CapRecord, CreaseMethod, EdgeCrease, Evaluator, MeshInput,
+    PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology, VertexCorner,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -40,21 +57,26 @@ fn points<R: FuzzReal>(g: &PatchGeometry<R>) -> Vec<Point3<R>> {
     }
 }
 
-fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) {
-    let Ok(mut ev) = Evaluator::<R>::new(plan) else {
-        return;
-    };
-    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
+/// Tessellates at most this many patches (the weld's and the closedness
+/// check's sorts dominate the run time).
+const MAX_TESSELLATED: usize = 2000;
+
+/// Evaluates `plan` at `positions`; `Some(closedness)` when it succeeded and
+/// was tessellated. Asserts finiteness and the tessellation's indices.
+fn evaluate<R: FuzzReal>(
+    plan: &SurfacePlan<'_>,
+    positions: &[[f64; 3]],
+    grid: usize,
+) -> Option<bool> {
+    let mut ev = Evaluator::<R>::new(plan).ok()?;
+    let positions: Vec<[R; 3]> = positions.iter().map(|p| p.map(R::from_f64)).collect();
     let mut sink = Collect {
         patches: Vec::new(),
         caps: Vec::new(),
     };
-    let r = ev.evaluate(plan, &positions, &mut sink);
     // Every successful evaluation is finite, at any magnitude (overflow is
     // EvalError::Overflow or the kernel's NonFinite).
-    if r.is_err() {
-        return;
-    }
+    ev.evaluate(plan, &positions, &mut sink).ok()?;
     let size = positions
         .iter()
         .flatten()
@@ -82,73 +104,226 @@ fn evaluate<R: FuzzReal>(plan: &SurfacePlan<'_>, mesh: &MeshInput, grid: usize) 
             );
         }
     }
-    // Tessellate (bounded: a few hundred samples; the sorts of the weld and
-    // the closedness check dominated the run time with up to 400 patches).
-    if sink.patches.len() <= 96 {
-        let t = tessellate(
-            sink.patches.iter().map(|p| TessPatch {
-                geometry: p.geometry,
-                finer: p.finer,
-                hole: p.hole,
-                hole_point: p.hole_point,
-                tag: p.level,
-            }),
-            grid,
-            // Relative to the mesh's size, as the CLI welds (an absolute
-            // tolerance makes the weld quadratic on tiny meshes: every
-            // sample in one cell).
-            R::from_f64(1e-9 * size),
-        );
-        assert_eq!(t.positions.len(), t.normals.len());
-        assert_eq!(t.faces.len(), t.tags.len());
-        for f in &t.faces {
-            assert!(f
-                .corners()
-                .iter()
-                .all(|&c| (c as usize) < t.positions.len()));
-        }
-        let _ = is_closed_and_oriented(&t.faces);
+    if sink.patches.len() > MAX_TESSELLATED {
+        return None;
     }
+    let t = tessellate(
+        sink.patches.iter().map(|p| TessPatch {
+            geometry: p.geometry,
+            finer: p.finer,
+            hole: p.hole,
+            hole_point: p.hole_point,
+            tag: p.level,
+        }),
+        grid,
+        // Relative to the mesh's size, as the CLI welds (an absolute
+        // tolerance makes the weld quadratic on tiny meshes: every sample in
+        // one cell).
+        R::from_f64(1e-9 * size),
+    );
+    assert_eq!(t.positions.len(), t.normals.len());
+    assert_eq!(t.faces.len(), t.tags.len());
+    for f in &t.faces {
+        assert!(f
+            .corners()
+            .iter()
+            .all(|&c| (c as usize) < t.positions.len()));
+    }
+    Some(is_closed_and_oriented(&t.faces).is_ok())
 }
 
-/// Bounded work per input (about 10⁴ executions per second): at most 200
-/// vertices, 200 faces and 800 corners.
-fn pipeline(mesh: &MeshInput, depth: u32, grid: usize, f32_run: bool) {
+/// Generic positions (a hash of the index in [-1, 1]³): no two patches of a
+/// closed mesh touch by accident, whatever positions the input had.
+fn generic(n: usize) -> Vec<[f64; 3]> {
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = s;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    (0..n).map(|_| [next(), next(), next()]).collect()
+}
+
+/// What `SurfacePlan::for_mesh` documents as accepted.
+fn acceptable(mesh: &MeshInput) -> bool {
+    let nv = mesh.vertices.len();
+    let nf = mesh.faces.len();
+    nv > 0
+        && nf > 0
+        && mesh.vertices.iter().flatten().all(|c| c.is_finite())
+        && mesh
+            .faces
+            .iter()
+            .all(|f| f.len() >= 3 && f.iter().all(|&v| (v as usize) < nv))
+        && mesh
+            .tags
+            .creases
+            .iter()
+            .flat_map(|c| c.vertices)
+            .chain(mesh.tags.corners.iter().map(|c| c.vertex))
+            .all(|v| (v as usize) < nv)
+        && mesh.tags.holes.iter().all(|&f| (f as usize) < nf)
+}
+
+#[derive(Clone, Copy)]
+struct Mode {
+    depth: u32,
+    catmull_clark: bool,
+    grid: usize,
+    f32_run: bool,
+    plain_too: bool,
+}
+
+fn pipeline(mesh: &MeshInput, mode: Mode) {
     if mesh.vertices.len() > 200
         || mesh.faces.len() > 200
         || mesh.faces.iter().map(Vec::len).sum::<usize>() > 800
+        || mesh.tags.creases.len() + mesh.tags.corners.len() + mesh.tags.holes.len() > 40
     {
         return;
     }
-    let Ok(topo) = Topology::new(mesh) else {
-        return;
+    let options = PlanOptions {
+        depth: mode.depth,
+        catmull_clark: mode.catmull_clark,
+        ..Default::default()
     };
-    let same = Topology::from_faces(mesh.vertices.len(), &mesh.faces);
-    assert!(same.is_ok());
-    let Ok(plan) = SurfacePlan::new(
-        &topo,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    ) else {
-        return;
+    let topo = Topology::new(mesh).ok();
+    if topo.is_some() {
+        assert!(Topology::from_faces(mesh.vertices.len(), &mesh.faces).is_ok());
+    }
+    let plan = SurfacePlan::for_mesh(mesh, options.clone());
+    let plan = match plan {
+        Ok(plan) => plan,
+        Err(e) => {
+            assert!(!acceptable(mesh), "for_mesh rejected an accepted mesh: {e}");
+            return;
+        }
     };
-    if f32_run {
-        evaluate::<f32>(&plan, mesh, grid);
-    } else {
-        evaluate::<f64>(&plan, mesh, grid);
+    assert!(
+        plan.uncovered.is_empty(),
+        "for_mesh left faces uncovered: {:?}",
+        &plan.uncovered[..plan.uncovered.len().min(4)]
+    );
+    let items = plan.regular.len() + plan.polar.len() + plan.ev.len();
+    if items <= 4000 {
+        if mode.f32_run {
+            evaluate::<f32>(&plan, &mesh.vertices, mode.grid);
+        } else {
+            evaluate::<f64>(&plan, &mesh.vertices, mode.grid);
+        }
+        let closed_input =
+            topo.as_ref().is_some_and(Topology::is_closed) && mesh.tags.holes.is_empty();
+        if closed_input {
+            let closed = evaluate::<f64>(&plan, &generic(mesh.vertices.len()), mode.grid);
+            assert_ne!(
+                closed,
+                Some(false),
+                "closed oriented input, tessellation not closed and oriented"
+            );
+        }
+    }
+    if mode.plain_too {
+        if let Some(topo) = &topo {
+            if let Ok(plan) = SurfacePlan::new(topo, options) {
+                if plan.regular.len() + plan.polar.len() + plan.ev.len() <= 4000 {
+                    evaluate::<f64>(&plan, &mesh.vertices, mode.grid);
+                }
+            }
+        }
     }
 }
 
+fn sharpness(u: &mut Unstructured<'_>) -> Result<f32> {
+    Ok(match u.int_in_range(0..=9u8)? {
+        0 => 0.0,
+        1 => 0.5,
+        2 => 1.0,
+        3 => 1.5,
+        4 => 2.0,
+        5 => 3.25,
+        6 => 10.0,
+        7 => f32::from(u.int_in_range(0..=120u8)?) / 8.0,
+        // Any bits: NaN, ∞, negative, subnormal.
+        _ => f32::from_bits(u.arbitrary()?),
+    })
+}
+
+fn arb_vertex(u: &mut Unstructured<'_>, nv: usize) -> Result<u32> {
+    if u.ratio(1, 16)? {
+        u.arbitrary()
+    } else {
+        u.int_in_range(0..=nv.max(1) as u32) // one past the end now and then
+    }
+}
+
+/// Tags over `mesh`: mostly edges and vertices of it, sometimes not.
+fn arb_tags(u: &mut Unstructured<'_>, mesh: &mut MeshInput) -> Result<()> {
+    let nv = mesh.vertices.len();
+    let nf = mesh.faces.len();
+    let tags = &mut mesh.tags;
+    for _ in 0..u.int_in_range(0..=8u8)? {
+        let vertices = if nf > 0 && !u.ratio(1, 8)? {
+            let f = &mesh.faces[u.int_in_range(0..=nf - 1)?];
+            if f.is_empty() {
+                continue;
+            }
+            let k = u.int_in_range(0..=f.len() - 1)?;
+            let pair = [f[k], f[(k + 1) % f.len()]];
+            if u.arbitrary()? {
+                [pair[1], pair[0]]
+            } else {
+                pair
+            }
+        } else {
+            [arb_vertex(u, nv)?, arb_vertex(u, nv)?]
+        };
+        tags.creases.push(EdgeCrease {
+            vertices,
+            sharpness: sharpness(u)?,
+        });
+    }
+    for _ in 0..u.int_in_range(0..=4u8)? {
+        let vertex = if nv > 0 && !u.ratio(1, 8)? {
+            u.int_in_range(0..=nv as u32 - 1)?
+        } else {
+            arb_vertex(u, nv)?
+        };
+        tags.corners.push(VertexCorner {
+            vertex,
+            sharpness: sharpness(u)?,
+        });
+    }
+    for _ in 0..u.int_in_range(0..=2u8)? {
+        tags.holes.push(if nf > 0 && !u.ratio(1, 8)? {
+            u.int_in_range(0..=nf as u32 - 1)?
+        } else {
+            u.arbitrary()?
+        });
+    }
+    tags.boundary = match u.int_in_range(0..=3u8)? {
+        0 => BoundaryInterpolation::None,
+        1 => BoundaryInterpolation::EdgeOnly,
+        _ => BoundaryInterpolation::EdgeAndCorner,
+    };
+    if u.arbitrary()? {
+        tags.crease_method = CreaseMethod::Chaikin;
+    }
+    Ok(())
+}
+
 fn arb_mesh(u: &mut Unstructured<'_>) -> Result<MeshInput> {
-    let mut mesh = match u.int_in_range(0..=6u8)? {
+    let mut mesh = match u.int_in_range(0..=8u8)? {
         0 => samples::cube(),
         1 => samples::globe(u.int_in_range(3..=12)?, u.int_in_range(1..=3)?),
         2 => samples::extraordinary_disk(u.int_in_range(3..=11)?, u.int_in_range(1..=2)?),
         3 => samples::grid(u.int_in_range(1..=5)?, u.int_in_range(1..=5)?),
         4 => samples::triangle_and_pentagon_mesh(),
         5 => samples::pole_disk(u.int_in_range(3..=12)?, u.int_in_range(2..=3)?),
+        6 => samples::torus(u.int_in_range(3..=6)?, u.int_in_range(3..=6)?),
+        7 => samples::two_beam_corner(),
         _ => {
             // Arbitrary sizes and indices.
             let nv = u.int_in_range(0..=40usize)?;
@@ -179,10 +354,11 @@ fn arb_mesh(u: &mut Unstructured<'_>) -> Result<MeshInput> {
             MeshInput::new(vertices, faces)
         }
     };
-    // Mutations: move a vertex (any bits), change an index, drop or flip a face.
+    // Mutations: move a vertex (any bits), change an index, drop or flip a
+    // face, glue a face onto an existing edge (a non-manifold edge).
     let k = u.int_in_range(0..=4u8)?;
     for _ in 0..k {
-        match u.int_in_range(0..=3u8)? {
+        match u.int_in_range(0..=4u8)? {
             0 if !mesh.vertices.is_empty() => {
                 let v = u.int_in_range(0..=mesh.vertices.len() - 1)?;
                 let c = u.int_in_range(0..=2usize)?;
@@ -203,6 +379,18 @@ fn arb_mesh(u: &mut Unstructured<'_>) -> Result<MeshInput> {
                 let f = u.int_in_range(0..=mesh.faces.len() - 1)?;
                 mesh.faces[f].reverse();
             }
+            4 if !mesh.faces.is_empty() && !mesh.vertices.is_empty() => {
+                let f = &mesh.faces[u.int_in_range(0..=mesh.faces.len() - 1)?];
+                if f.len() >= 2 {
+                    let (a, b) = (f[0], f[1]);
+                    let c = u.int_in_range(0..=mesh.vertices.len() as u32 - 1)?;
+                    let mut g = vec![b, a, c];
+                    if u.arbitrary()? {
+                        g.push(u.int_in_range(0..=mesh.vertices.len() as u32 - 1)?);
+                    }
+                    mesh.faces.push(g);
+                }
+            }
             _ => {}
         }
     }
@@ -215,27 +403,32 @@ fn arb_mesh(u: &mut Unstructured<'_>) -> Result<MeshInput> {
             }
         }
     }
+    arb_tags(u, &mut mesh)?;
     Ok(mesh)
 }
 
 fuzz_target!(|data: &[u8]| {
-    let Some((&mode, rest)) = data.split_first() else {
+    let Some((&first, rest)) = data.split_first() else {
         return;
     };
-    let depth = 1 + u32::from(mode >> 7);
-    let grid = 1 + usize::from((mode >> 5) & 1);
-    let f32_run = mode & 0x40 != 0;
-    if mode & 1 == 0 {
+    let mode = Mode {
+        depth: [1, 2, 3, 2][usize::from((first >> 2) & 3)],
+        catmull_clark: first & 2 != 0,
+        grid: 1 + usize::from((first >> 4) & 1),
+        f32_run: first & 0x20 != 0,
+        plain_too: first & 0x40 != 0,
+    };
+    if first & 1 == 0 {
         let Ok(text) = std::str::from_utf8(rest) else {
             return;
         };
         if let Ok(mesh) = parse_obj(text) {
-            pipeline(&mesh, depth, grid, f32_run);
+            pipeline(&mesh, mode);
         }
     } else {
         let mut u = Unstructured::new(rest);
         if let Ok(mesh) = arb_mesh(&mut u) {
-            pipeline(&mesh, depth, grid, f32_run);
+            pipeline(&mesh, mode);
         }
     }
 });

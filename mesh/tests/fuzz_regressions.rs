@@ -1,0 +1,139 @@
+//! Findings of the `obj_mesh` fuzz target (fuzz/fuzz_targets/obj_mesh.rs),
+//! one test per finding, each on its minimised input written out literally:
+//! `SurfacePlan::for_mesh` must not panic, must accept every mesh it
+//! documents as accepted and cover every face, its evaluation must be
+//! finite, and a closed, consistently oriented input without holes must
+//! tessellate (f64, at generic positions) to a closed, consistently oriented
+//! mesh. A test is `#[ignore]`d, naming its finding, while the finding is
+//! open.
+
+use capdiv_mesh::obj::parse_obj;
+use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, BadEdge, TessPatch};
+use capdiv_mesh::{
+    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology,
+};
+
+struct Collect {
+    patches: Vec<PatchRecord<f64>>,
+}
+
+impl SurfaceSink<f64> for Collect {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        self.patches.push(p.clone());
+    }
+    fn cap(&mut self, _: &CapRecord<f64>) {}
+}
+
+/// The fuzz target's generic positions (a hash of the index in [-1, 1]³).
+fn generic(n: usize) -> Vec<[f64; 3]> {
+    let mut s = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = || {
+        s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = s;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    };
+    (0..n).map(|_| [next(), next(), next()]).collect()
+}
+
+/// `for_mesh` succeeds, covers every face and evaluates finitely at the
+/// mesh's positions and at generic ones; returns the closedness of the
+/// generic tessellation (grid 1).
+fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge> {
+    let plan = SurfacePlan::for_mesh(
+        mesh,
+        PlanOptions {
+            depth,
+            catmull_clark,
+            ..Default::default()
+        },
+    )
+    .expect("for_mesh accepts the mesh");
+    assert!(
+        plan.uncovered.is_empty(),
+        "faces left uncovered: {:?}",
+        plan.uncovered
+    );
+    let mut closed = Ok(());
+    for positions in [mesh.vertices.clone(), generic(mesh.vertices.len())] {
+        let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+        let mut sink = Collect {
+            patches: Vec::new(),
+        };
+        ev.evaluate(&plan, &positions, &mut sink)
+            .expect("evaluates");
+        let size = positions
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, c| m.max(c.abs()));
+        let t = tessellate(
+            sink.patches.iter().map(|p| TessPatch {
+                geometry: p.geometry,
+                finer: p.finer,
+                hole: p.hole,
+                hole_point: p.hole_point,
+                tag: p.level,
+            }),
+            1,
+            1e-9 * size,
+        );
+        assert!(t.positions.iter().all(|p| p.is_finite()));
+        closed = is_closed_and_oriented(&t.faces);
+    }
+    closed
+}
+
+fn is_closed_input(mesh: &MeshInput) -> bool {
+    Topology::new(mesh).is_ok_and(|t| t.is_closed()) && mesh.tags.holes.is_empty()
+}
+
+/// The fuzz seed `obj-tetra-corner`: a tetrahedron (closed, consistently
+/// oriented, every face a triangle) with one corner tag. Tagged, so every
+/// face is refined adaptively; at depth 1 and 2 the tessellation has an
+/// unpaired edge (depth 3 is closed, and so is the untagged tetrahedron).
+#[test]
+#[ignore = "fuzz finding obj_mesh-1: tagged tetrahedron tessellates open at depth 1-2"]
+fn tagged_tetrahedron_tessellates_closed() {
+    let tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    for tag in [
+        "t corner 1/1/0 3 10\n",
+        "t corner 1/1/0 3 0.5\n",
+        "t crease 2/1/0 0 1 1\n",
+    ] {
+        let mesh = parse_obj(&format!("{tet}{tag}")).unwrap();
+        assert!(is_closed_input(&mesh));
+        for depth in 1..=3 {
+            for cc in [false, true] {
+                assert_eq!(
+                    run(&mesh, depth, cc),
+                    Ok(()),
+                    "{tag:?} depth {depth} cc {cc}"
+                );
+            }
+        }
+    }
+}
+
+/// The fuzz seed `obj-repeated-vertex`: a 2×2 grid of quads plus a face
+/// that lists a vertex twice (`f 3 6 3 2`). `for_mesh` documents repeated
+/// vertices as accepted; the analysis must finish quickly and cover every
+/// face.
+#[test]
+#[ignore = "fuzz finding obj_mesh-2: a face listing a vertex twice makes the adaptive refinement run for seconds (exponential) and leaves the face uncovered"]
+fn face_with_repeated_vertex_is_covered_quickly() {
+    let obj = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\n\
+               v 0 2 0\nv 1 2 0\nv 2 2 0\n\
+               f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\nf 3 6 3 2\n";
+    let mesh = parse_obj(obj).unwrap();
+    for depth in 1..=3 {
+        let start = std::time::Instant::now();
+        let _ = run(&mesh, depth, false);
+        assert!(
+            start.elapsed().as_secs_f64() < 2.0,
+            "depth {depth}: {:?}",
+            start.elapsed()
+        );
+    }
+}
