@@ -486,3 +486,25 @@ fn a_face_with_the_other_orientation() {
     let r = compare("reversed face", &m, 4);
     eprintln!("reversed face: {} samples, worst {:e}", r.compared, r.worst);
 }
+
+#[test]
+fn cube_with_a_crease_of_every_sharpness_and_a_corner() {
+    for depth in [2, 3, 4] {
+        let mut m = samples::cube();
+        for k in 0..4 {
+            let f = m.faces[0].clone();
+            m.tags
+                .creases
+                .push(crease(f[k], f[(k + 1) % 4], [0.5, 1.0, 2.5, 10.0][k]));
+        }
+        m.tags.corners.push(VertexCorner {
+            vertex: m.faces[5][0],
+            sharpness: 3.0,
+        });
+        let r = compare("cube, every sharpness", &m, depth);
+        eprintln!(
+            "cube, every sharpness, depth {depth}: {} samples, worst {:e}",
+            r.compared, r.worst
+        );
+    }
+}

@@ -71,6 +71,8 @@ pub struct LastHole {
     pub corners: [u32; 4],
     /// The vertex (its working point at the hole's level).
     pub vertex: u32,
+    /// The hole's level.
+    pub level: u32,
     /// The vertex's limit point (working point).
     pub point: u32,
 }
@@ -122,7 +124,7 @@ pub fn cover(
         level_jumps: 0,
     };
     for &(f, chart) in roots {
-        visit(base, f as usize, 0, chart, options, &mut out);
+        visit(base, f as usize, 0, chart, false, options, &mut out);
     }
     mark_neighbours(&mut out);
     out
@@ -163,6 +165,7 @@ fn visit(
     f: usize,
     level: u32,
     chart: FaceChart,
+    may_close: bool,
     options: AdaptiveOptions,
     out: &mut Adaptive,
 ) {
@@ -183,13 +186,14 @@ fn visit(
         });
         return;
     }
-    if let Some(v) = final_hole(m, f, level, options) {
+    if let Some(v) = final_hole(m, f, level, options).filter(|_| may_close) {
         if let Some(point) = limit_point(m, v, &mut out.points) {
             let first = m.face_start[f] as usize;
             out.holes.push(LastHole {
                 chart,
                 corners: core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]),
                 vertex: m.point[v],
+                level,
                 point,
             });
             return;
@@ -211,6 +215,10 @@ fn visit(
     ring.dedup();
     let at = ring.iter().position(|&g| g as usize == f).unwrap_or(0);
     let child = refine(m, &ring, options.chaikin, &mut out.points);
+    // A child may be a last hole only if this face has one irregular
+    // corner: otherwise a sibling would border the holes of two vertices
+    // (a triangle's sub-quad, whose corner and centre are both irregular).
+    let children_may_close = irregular_corners(m, f).0.count_ones() <= 1;
     let cm = &child.level;
     let n = m.face(f).len();
     let first = child.first[at] as usize;
@@ -228,7 +236,15 @@ fn visit(
                 map: Affine::IDENTITY,
             }
         };
-        visit(cm, first + k, level + 1, sub, options, out);
+        visit(
+            cm,
+            first + k,
+            level + 1,
+            sub,
+            children_may_close,
+            options,
+            out,
+        );
     }
 }
 
@@ -236,40 +252,50 @@ fn visit(
 /// patches' and holes' edges, named by their end points: an edge `(a, b)`
 /// whose neighbour across is refined once more meets the edges `(a', m)`
 /// and `(m, b')` of the child points `a'`, `b'` of `a`, `b` and `m` of the
-/// edge; an edge of a last hole, or half of one (where the faces around an
-/// irregular vertex stop at two levels, as semi-sharp features make them),
-/// borders that hole.
+/// edge; an edge of a last hole, or a piece of one at a finer level (where
+/// the faces around an irregular vertex stop at different levels, as
+/// semi-sharp features and crowded corners make them), borders that hole.
 fn mark_neighbours(out: &mut Adaptive) {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // Edge → (vertex at the coarsest level its holes have, limit point).
     let mut hole_edges: BTreeMap<(u32, u32), usize> = BTreeMap::new();
     for (i, h) in out.holes.iter().enumerate() {
         for k in 0..4 {
-            let (a, b) = (h.corners[k], h.corners[(k + 1) % 4]);
-            hole_edges.insert(key(a, b), i);
-            if let Some(((a1, m), (m2, b1))) = halves(&out.points, a, b) {
-                hole_edges.insert(key(a1, m), i);
-                hole_edges.insert(key(m2, b1), i);
+            // The edge and its pieces at every finer level made.
+            let mut stack = vec![(h.corners[k], h.corners[(k + 1) % 4])];
+            while let Some((a, b)) = stack.pop() {
+                hole_edges.insert(key(a, b), i);
+                if let Some((x, y)) = halves(&out.points, a, b) {
+                    stack.push(x);
+                    stack.push(y);
+                }
             }
         }
     }
-    // The holes around one vertex may stop at two levels: the same vertex
-    // (one the other's vertex child), limit points equal up to round-off.
-    let same_vertex = |x: u32, y: u32| {
-        let descends = |mut from: u32, to: u32| {
-            for _ in 0..=EXTRA_LEVELS + 2 {
-                if from == to {
-                    return true;
+    // The holes around one vertex may stop at different levels. The limit
+    // masks of levels differ where the rule is not exact (a dart uses the
+    // smooth mask, as OpenSubdiv's does): every hole of a vertex takes the
+    // point of its coarsest hole, so their fans meet.
+    let mut order: Vec<usize> = (0..out.holes.len()).collect();
+    order.sort_by_key(|&i| out.holes[i].level);
+    let mut point_of: BTreeMap<u32, (u32, u32)> = BTreeMap::new();
+    for &i in &order {
+        let (vertex, point) = (out.holes[i].vertex, out.holes[i].point);
+        let root = *point_of.entry(vertex).or_insert((vertex, point));
+        let mut v = vertex;
+        for _ in 0..=EXTRA_LEVELS + 2 {
+            match out.points.get(&Key::Vertex(v)) {
+                Some(c) => {
+                    point_of.entry(c).or_insert(root);
+                    v = c;
                 }
-                match out.points.get(&Key::Vertex(from)) {
-                    Some(c) => from = c,
-                    None => return false,
-                }
+                None => break,
             }
-            false
-        };
-        descends(x, y) || descends(y, x)
-    };
+        }
+    }
+    for h in &mut out.holes {
+        (h.vertex, h.point) = point_of[&h.vertex];
+    }
     let mut conflicts = 0;
     for p in &mut out.patches {
         let mut vertex = NONE;
@@ -277,7 +303,7 @@ fn mark_neighbours(out: &mut Adaptive) {
             let (a, b) = (p.corners[k], p.corners[(k + 1) % 4]);
             if let Some(&i) = hole_edges.get(&key(a, b)) {
                 let h = &out.holes[i];
-                if p.hole != 0 && !same_vertex(vertex, h.vertex) {
+                if p.hole != 0 && vertex != h.vertex {
                     conflicts += 1;
                     continue;
                 }

@@ -296,8 +296,11 @@ pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> 
 }
 
 /// The limit position of `v` (`Sdc::Scheme::ComputeVertexLimitMask`): smooth
-/// and dart `(n² v + 4 Σ ends + Σ opposite corners)/(n(n+5))` over quads,
-/// crease `(4v + a + b)/6`, corner `v`. `None` for a smooth vertex with a
+/// and dart `(n² v + 4 Σ ends + Σ opposite corners)/(n(n+5))` over quads
+/// (`v` at valence 2), crease `(4v + a + b)/6`, corner `v`. Exact where the
+/// rule stays the same at every level and is smooth, crease or corner; at a
+/// dart (and valence 2) it is OpenSubdiv's approximation, so it differs a
+/// little from level to level (the adaptive holes of one vertex share one). `None` for a smooth vertex with a
 /// face that is not a quad (its limit mask needs face centroids; the
 /// refinement never stops there).
 pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
@@ -305,6 +308,8 @@ pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
     let pv = m.point[v];
     let mut row = Row::new();
     match rule {
+        // OpenSubdiv's smooth mask of a valence-2 vertex is the corner mask.
+        Rule::Smooth | Rule::Dart if m.vertex_corners(v).len() == 2 => row.add(pv, 1.0),
         Rule::Smooth | Rule::Dart => {
             let edges = m.vertex_edges(v);
             let n = edges.len() as f64;

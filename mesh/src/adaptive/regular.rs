@@ -32,8 +32,25 @@ fn rot((a, b): (i32, i32)) -> (i32, i32) {
 }
 
 /// Whether corner `c` is regular (see the module doc), its sector returned
-/// in `fan`.
+/// in `fan`: its own sector fits, and so does every other sector of its
+/// vertex. (A sector that fits beside one that does not would put a level-0
+/// patch against the rings of the other, more than one level apart along
+/// the sharp edge between them.)
 pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
+    if !sector_is_regular(m, c, fan) {
+        return false;
+    }
+    let v = m.corner_vertex[c as usize] as usize;
+    let mut other = Vec::with_capacity(8);
+    let own: Vec<Corner> = fan.clone();
+    m.vertex_corners(v)
+        .iter()
+        .filter(|k| !own.contains(k))
+        .all(|&k| sector_is_regular(m, k, &mut other))
+}
+
+/// Whether the sector of corner `c` fits its vertex's rule.
+fn sector_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
     let v = m.corner_vertex[c as usize] as usize;
     if m.has_semi_sharp(v) {
         return false;
