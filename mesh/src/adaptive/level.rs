@@ -277,19 +277,28 @@ impl Level {
     }
 
     /// The corners at `v` reachable from `c` across manifold edges that are
-    /// not sharp (one fan of one sheet), counter-clockwise, `c` first, and
+    /// not sharp (one sector of one sheet), in counter-clockwise order, and
     /// whether the walk came back to `c`.
     pub fn fan(&self, c: Corner, out: &mut Vec<Corner>) -> bool {
+        self.walk(c, true, out)
+    }
+
+    /// [`Self::fan`], crossing sharp edges too when `stop_at_sharp` is false
+    /// (one fan of the vertex's faces).
+    fn walk(&self, c: Corner, stop_at_sharp: bool, out: &mut Vec<Corner>) -> bool {
         out.clear();
         out.push(c);
         let limit = self
             .vertex_corners(self.corner_vertex[c as usize] as usize)
             .len();
-        // Counter-clockwise: across the edge from prev(c) to c.
+        let crossable = |k: Corner| {
+            !(stop_at_sharp && is_sharp(self.edge_sharpness[self.corner_edge[k as usize] as usize]))
+        };
+        // Counter-clockwise: across the edge from prev(k) to k.
         let mut k = c;
         loop {
             let p = self.prev(k);
-            if is_sharp(self.edge_sharpness[self.corner_edge[p as usize] as usize]) {
+            if !crossable(p) {
                 break;
             }
             let Some(o) = self.across(p) else { break };
@@ -302,10 +311,10 @@ impl Level {
             out.push(o);
             k = o;
         }
-        // Clockwise: across the edge from c to next(c).
+        // Clockwise: across the edge from k to next(k).
         let mut k = c;
         loop {
-            if is_sharp(self.edge_sharpness[self.corner_edge[k as usize] as usize]) {
+            if !crossable(k) {
                 break;
             }
             let Some(o) = self.across(k) else { break };
@@ -362,47 +371,14 @@ impl Level {
             let first = corners[0];
             let mut one_fan = true;
             if nm_edges == 0 {
-                // Walk ignoring sharpness: a saved copy of the sharpness
-                // would be needed otherwise; count corners reachable.
-                one_fan = self.fan_ignoring_sharpness(first, &mut fan) == faces;
+                self.walk(first, false, &mut fan);
+                one_fan = fan.len() == faces;
             }
             let nonmanifold = nm_edges > 0 || !one_fan;
             if nonmanifold && !(nm_edges == 2 && boundary == 0 && faces > edges.len()) {
                 self.vertex_sharpness[v] = INFINITE;
             }
         }
-    }
-
-    /// Corners of one fan at the vertex of `c`, crossing manifold edges
-    /// whatever their sharpness; returns how many.
-    fn fan_ignoring_sharpness(&self, c: Corner, out: &mut Vec<Corner>) -> usize {
-        out.clear();
-        out.push(c);
-        let limit = self
-            .vertex_corners(self.corner_vertex[c as usize] as usize)
-            .len();
-        let mut k = c;
-        while out.len() <= limit {
-            let Some(o) = self.across(self.prev(k)) else {
-                break;
-            };
-            if o == c {
-                return out.len();
-            }
-            out.push(o);
-            k = o;
-        }
-        let mut k = c;
-        while out.len() <= limit {
-            let Some(o) = self.across(k) else { break };
-            let o = self.next(o);
-            if o == c {
-                break;
-            }
-            out.push(o);
-            k = o;
-        }
-        out.len()
     }
 
     /// Whether `s` is infinitely sharp (re-exported for the modules here).
