@@ -4,6 +4,7 @@
 //! edge ignored as OpenSubdiv ignores them), holes, boundary faces made
 //! holes under `VTX_BOUNDARY_NONE`, then [`Level::sharpen_base`].
 
+use super::crease::is_infinite;
 use super::level::Level;
 use crate::input::{BoundaryInterpolation, CreaseMethod, MeshInput};
 use crate::topology::Topology;
@@ -128,7 +129,7 @@ fn boundary_faces_to_holes(level: &mut Level) {
     for v in 0..level.num_vertices() {
         let open = level.vertex_edges(v).iter().any(|&e| {
             level.edge_corners(e as usize).len() == 1
-                && !Level::infinite(level.edge_sharpness[e as usize])
+                && !is_infinite(level.edge_sharpness[e as usize])
         });
         if open {
             holes.extend(
@@ -163,7 +164,7 @@ fn clean_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
                     let e = e as usize;
                     level.edge_sharpness[e] == 0.0
                         || (level.edge_corners(e).len() == 1
-                            && Level::infinite(level.edge_sharpness[e]))
+                            && is_infinite(level.edge_sharpness[e]))
                 })
         })
         .collect();

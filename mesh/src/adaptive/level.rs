@@ -9,7 +9,7 @@
 //! whose faces are all present ("complete") may be asked for rules, masks or
 //! regularity; [`crate::adaptive`] keeps to those.
 
-use super::crease::{is_infinite, is_semi_sharp, is_sharp, vertex_rule, Rule, INFINITE};
+use super::crease::{is_semi_sharp, is_sharp, vertex_rule, Rule, INFINITE};
 use alloc::vec;
 use alloc::vec::Vec;
 
@@ -379,10 +379,5 @@ impl Level {
                 self.vertex_sharpness[v] = INFINITE;
             }
         }
-    }
-
-    /// Whether `s` is infinitely sharp (re-exported for the modules here).
-    pub fn infinite(s: f32) -> bool {
-        is_infinite(s)
     }
 }

@@ -358,29 +358,3 @@ pub fn finer_across(points: &Points, edges: &BTreeSet<(u32, u32)>, a: u32, b: u3
     };
     edges.contains(&key(ca, mid))
 }
-
-/// A base level for the adaptive refinement: faces, per-vertex points, and
-/// the mesh's tags already applied (see [`Level::sharpen_base`]).
-pub fn base_level(
-    faces: &[&[u32]],
-    num_vertices: usize,
-    vertex_sharpness: Vec<f32>,
-    holes: Vec<bool>,
-    sharp: impl FnMut(u32, u32) -> f32,
-    sharpen_corners: bool,
-) -> Level {
-    let point = (0..num_vertices as u32).collect();
-    let mut l = Level::new(faces, point, vertex_sharpness, holes, sharp);
-    l.sharpen_base(sharpen_corners);
-    l
-}
-
-/// Per face of `base`, the number of patches by level (for summaries).
-pub fn patches_per_level(a: &Adaptive) -> Vec<usize> {
-    let deepest = a.patches.iter().map(|p| p.level).max().map_or(0, |l| l + 1);
-    let mut counts = vec![0usize; deepest as usize];
-    for p in &a.patches {
-        counts[p.level as usize] += 1;
-    }
-    counts
-}
