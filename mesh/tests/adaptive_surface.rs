@@ -289,3 +289,49 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
     is_closed_and_oriented(&t.faces).expect("globe with a sharp equator closed");
     let _ = Point3::<f64>::ZERO;
 }
+
+/// Joins across level transitions: on closed meshes whose tags all decay
+/// (semi-sharp creases and corners), the limit surface is C² away from the
+/// irregular vertices, so at every shared patch edge sample (level 0 against
+/// level 1 against level 2, …) the unit normals agree to 1e-9 and H, K to
+/// 1e-6 of the local curvature scale (the tolerances of
+/// `surface_smooth.rs`). Across an infinitely sharp crease the join is C⁰
+/// by design: the same check on a mesh with one sees normals jump there.
+#[test]
+fn joins_across_level_transitions_are_c2_and_infinitely_sharp_creases_c0() {
+    let mut torus = samples::torus(10, 8);
+    for i in 0..10u32 {
+        torus
+            .tags
+            .creases
+            .push(crease(i * 8, ((i + 1) % 10) * 8, 0.5 + 0.3 * i as f32));
+    }
+    torus.tags.corners.push(VertexCorner {
+        vertex: 43,
+        sharpness: 2.0,
+    });
+    for cc in [false, true] {
+        let (_, c) = plan_and_evaluate(&torus, 3, cc);
+        let levels: std::collections::BTreeSet<u32> = c.patches.iter().map(|p| p.level).collect();
+        assert!(levels.len() >= 3, "several levels meet: {levels:?}");
+        let (pairs, wn, wh, wk) = common::closed_and_smooth("semi-sharp torus", &c.patches);
+        assert!(pairs > 0);
+        assert!(
+            wn <= 1e-9 && wh <= 1e-6 && wk <= 1e-6,
+            "normal {wn:e}, H {wh:e}, K {wk:e}"
+        );
+    }
+    let mut sharp = samples::torus(10, 8);
+    for i in 0..10u32 {
+        sharp
+            .tags
+            .creases
+            .push(crease(i * 8, ((i + 1) % 10) * 8, 10.0));
+    }
+    let (_, c) = plan_and_evaluate(&sharp, 3, true);
+    let (_, wn, _, _) = common::closed_and_smooth("sharp torus", &c.patches);
+    assert!(
+        wn > 1e-2,
+        "an infinitely sharp crease is a visible C0 join: normal jump {wn:e}"
+    );
+}

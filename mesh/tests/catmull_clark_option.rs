@@ -16,12 +16,10 @@
 mod common;
 
 use capdiv_mesh::{
-    samples, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan,
-    Topology,
+    samples, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan, Topology,
 };
 use capdiv_reference::{bezier, catmull_clark as cc};
 use common::*;
-use std::collections::HashMap;
 
 type Grid = Vec<Vec<[f64; 3]>>;
 
@@ -110,87 +108,6 @@ fn valence_3_and_5_get_catmull_clark_caps_equal_to_the_reference() {
         println!("CC option n={n}: rings 1..{depth} worst {worst:.2e}");
         assert!(worst < 1e-14, "n={n}: {worst}");
     }
-}
-
-/// Closedness and smoothness across patch edges (see the module doc).
-/// Returns (pairs, worst normal, worst ΔH/κ, worst ΔK/κ²).
-fn closed_and_smooth(name: &str, patches: &[PatchRecord<f64>]) -> (usize, f64, f64, f64) {
-    struct S {
-        patch: usize,
-        x: [f64; 3],
-        n: [f64; 3],
-        k: f64,
-        h: f64,
-        eighth: bool,
-    }
-    let mut samples = Vec::new();
-    for (pi, p) in patches.iter().enumerate() {
-        let g = control_grid(&p.geometry);
-        for edge in 0..4 {
-            if p.hole & (1 << edge) != 0 {
-                continue;
-            }
-            for i in 0..=16u32 {
-                let t = i as f64 / 16.0;
-                let (u, v) = match edge {
-                    0 => (t, 0.0),
-                    1 => (1.0, t),
-                    2 => (t, 1.0),
-                    _ => (0.0, t),
-                };
-                let d = derivs(&g, u, v);
-                let (n, k, h) = geometry(&d);
-                samples.push(S {
-                    patch: pi,
-                    x: d[0],
-                    n,
-                    k,
-                    h,
-                    eighth: i.is_multiple_of(2) && (1..16).contains(&i),
-                });
-            }
-        }
-    }
-    let cell = 1e-6;
-    let key = |x: [f64; 3]| x.map(|c| (c / cell).floor() as i64);
-    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
-    for (i, s) in samples.iter().enumerate() {
-        grid.entry(key(s.x)).or_default().push(i);
-    }
-    let (mut pairs, mut wn, mut wh, mut wk) = (0, 0.0f64, 0.0f64, 0.0f64);
-    for a in &samples {
-        let c = key(a.x);
-        let mut found = false;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for &j in grid
-                        .get(&[c[0] + dx, c[1] + dy, c[2] + dz])
-                        .into_iter()
-                        .flatten()
-                    {
-                        let b = &samples[j];
-                        if b.patch == a.patch || dist(a.x, b.x) > 1e-9 {
-                            continue;
-                        }
-                        found = true;
-                        pairs += 1;
-                        let kappa = a.h.abs().max(b.h.abs()).max(a.k.abs().sqrt()).max(1.0);
-                        wn = wn.max(dist(a.n, b.n));
-                        wh = wh.max((a.h - b.h).abs() / kappa);
-                        wk = wk.max((a.k - b.k).abs() / (kappa * kappa));
-                    }
-                }
-            }
-        }
-        assert!(
-            found || !a.eighth,
-            "{name}: edge sample {:?} has no partner: not closed",
-            a.x
-        );
-    }
-    println!("{name}: {pairs} pairs, worst normal {wn:.1e}, ΔH/κ {wh:.1e}, ΔK/κ² {wk:.1e}");
-    (pairs, wn, wh, wk)
 }
 
 #[test]
