@@ -88,14 +88,13 @@ impl Level {
                 [b, a]
             }
         };
-        let mut order: Vec<u32> = (0..nc as u32).collect();
-        order.sort_unstable_by_key(|&c| pair(c as usize));
+        let mut order: Vec<([u32; 2], u32)> = (0..nc).map(|c| (pair(c), c as u32)).collect();
+        order.sort_unstable();
         let mut corner_edge = vec![0u32; nc];
         let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
         let mut edge_corner_start = vec![0u32];
         let mut edge_corners = Vec::with_capacity(nc);
-        for &c in &order {
-            let p = pair(c as usize);
+        for &(p, c) in &order {
             if edge_vertices.last() != Some(&p) {
                 if !edge_vertices.is_empty() {
                     edge_corner_start.push(edge_corners.len() as u32);

@@ -5,11 +5,11 @@
 //! point, and a patch edge can ask whether its neighbour is finer.
 
 use crate::stencil::StencilTable;
-use alloc::collections::BTreeMap;
 use alloc::vec::Vec;
+use hashbrown::HashMap;
 
 /// What a point is.
-#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Key {
     /// The child of a vertex (its point).
     Vertex(u32),
@@ -27,7 +27,7 @@ pub enum Key {
 #[derive(Clone, Debug)]
 pub struct Points {
     base: u32,
-    keys: BTreeMap<Key, u32>,
+    keys: HashMap<Key, u32>,
     /// Row `i` is point `base + i`.
     pub rows: StencilTable,
 }
@@ -37,7 +37,7 @@ impl Points {
     pub fn new(base: u32) -> Self {
         Points {
             base,
-            keys: BTreeMap::new(),
+            keys: HashMap::new(),
             rows: StencilTable::new(),
         }
     }

@@ -24,12 +24,8 @@
 use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, vertex_rule, Rule};
 use super::level::Level;
 use super::points::{Key, Points};
-use alloc::collections::BTreeMap;
-use alloc::vec;
 use alloc::vec::Vec;
-
-/// "Not made yet".
-const NONE: u32 = u32::MAX;
+use hashbrown::HashMap;
 
 /// A stencil row being built: `(point, weight)`, one entry per point.
 struct Row(Vec<(u32, f64)>);
@@ -79,12 +75,14 @@ pub struct Child {
 
 /// Refines `faces` of `m` (see the module doc for what `m` must hold).
 pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> Child {
-    let mut vchild = vec![NONE; m.num_vertices()];
-    let mut echild = vec![NONE; m.edge_vertices.len()];
-    let mut fchild = vec![NONE; m.num_faces()];
+    // Children by parent index: maps, not arrays, as the parent may be the
+    // whole base mesh while the faces refined are a handful.
+    let mut vchild: HashMap<usize, u32> = HashMap::new();
+    let mut echild: HashMap<usize, u32> = HashMap::new();
+    let mut fchild: HashMap<usize, u32> = HashMap::new();
     let mut point: Vec<u32> = Vec::new();
     let mut vsharp: Vec<f32> = Vec::new();
-    let mut sharp_edges: BTreeMap<(u32, u32), f32> = BTreeMap::new();
+    let mut sharp_edges: HashMap<(u32, u32), f32> = HashMap::new();
     let mut child_faces: Vec<[u32; 4]> = Vec::new();
     let mut holes = Vec::new();
     let mut first = Vec::with_capacity(faces.len());
@@ -96,50 +94,44 @@ pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> C
     };
     for &f in faces {
         let f = f as usize;
-        if fchild[f] == NONE {
+        if !fchild.contains_key(&f) {
             let p = face_point(m, f, points);
-            fchild[f] = new_vertex(p, 0.0, &mut point, &mut vsharp);
+            fchild.insert(f, new_vertex(p, 0.0, &mut point, &mut vsharp));
         }
         for c in m.face_corners(f) {
             let v = m.corner_vertex[c as usize] as usize;
-            if vchild[v] == NONE {
+            if !vchild.contains_key(&v) {
                 let p = vertex_point(m, v, chaikin, points);
-                vchild[v] = new_vertex(p, decay(m.vertex_sharpness[v]), &mut point, &mut vsharp);
+                let s = decay(m.vertex_sharpness[v]);
+                vchild.insert(v, new_vertex(p, s, &mut point, &mut vsharp));
             }
+        }
+        for c in m.face_corners(f) {
             let e = m.corner_edge[c as usize] as usize;
-            if echild[e] == NONE {
-                let p = edge_point(m, e, chaikin, points);
-                echild[e] = new_vertex(p, 0.0, &mut point, &mut vsharp);
-                let s = m.edge_sharpness[e];
-                if is_sharp(s) {
-                    for end in m.edge_vertices[e] {
-                        let cs = child_edge_sharpness(s, chaikin, around(m, end as usize));
-                        if is_sharp(cs) {
-                            let (a, b) = (
-                                vchild_or_make(
-                                    m,
-                                    end as usize,
-                                    &mut vchild,
-                                    chaikin,
-                                    points,
-                                    &mut point,
-                                    &mut vsharp,
-                                ),
-                                echild[e],
-                            );
-                            sharp_edges.insert((a.min(b), a.max(b)), cs);
-                        }
+            if echild.contains_key(&e) {
+                continue;
+            }
+            let p = edge_point(m, e, chaikin, points);
+            let mid = new_vertex(p, 0.0, &mut point, &mut vsharp);
+            echild.insert(e, mid);
+            let s = m.edge_sharpness[e];
+            if is_sharp(s) {
+                // Both ends are corners of f: their children exist.
+                for end in m.edge_vertices[e] {
+                    let cs = child_edge_sharpness(s, chaikin, around(m, end as usize));
+                    if is_sharp(cs) {
+                        let a = vchild[&(end as usize)];
+                        sharp_edges.insert((a.min(mid), a.max(mid)), cs);
                     }
                 }
             }
         }
         first.push(child_faces.len() as u32);
-        let corners = m.face_corners(f);
-        for c in corners.clone() {
+        for c in m.face_corners(f) {
             let v = m.corner_vertex[c as usize] as usize;
             let e_next = m.corner_edge[c as usize] as usize;
             let e_prev = m.corner_edge[m.prev(c) as usize] as usize;
-            child_faces.push([vchild[v], echild[e_next], fchild[f], echild[e_prev]]);
+            child_faces.push([vchild[&v], echild[&e_next], fchild[&f], echild[&e_prev]]);
             holes.push(m.hole[f]);
         }
     }
@@ -148,27 +140,6 @@ pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> C
         sharp_edges.get(&(a, b)).copied().unwrap_or(0.0)
     });
     Child { level, first }
-}
-
-/// The child of vertex `v`, made when missing (an edge's end that no face
-/// corner of the refined faces reached yet).
-#[allow(clippy::too_many_arguments)]
-fn vchild_or_make(
-    m: &Level,
-    v: usize,
-    vchild: &mut [u32],
-    chaikin: bool,
-    points: &mut Points,
-    point: &mut Vec<u32>,
-    vsharp: &mut Vec<f32>,
-) -> u32 {
-    if vchild[v] == NONE {
-        let p = vertex_point(m, v, chaikin, points);
-        point.push(p);
-        vsharp.push(decay(m.vertex_sharpness[v]));
-        vchild[v] = (point.len() - 1) as u32;
-    }
-    vchild[v]
 }
 
 /// Sharpness of the edges at `v`.
