@@ -158,6 +158,11 @@ fn acceptable(mesh: &MeshInput) -> bool {
             .faces
             .iter()
             .all(|f| f.len() >= 3 && f.iter().all(|&v| (v as usize) < nv))
+        // A face listing a vertex twice is refused (documented).
+        && mesh
+            .faces
+            .iter()
+            .all(|f| (1..f.len()).all(|k| !f[..k].contains(&f[k])))
         && mesh
             .tags
             .creases
