@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The whole test suite (the README's test command): host tests of every crate,
+# The whole test suite (the README's test command): host tests of every crate
+# (capdiv-mesh's against OpenSubdiv, installed here when missing),
 # the kernel with the micromath backend, then the checks that install what they
 # need on a fresh machine:
 #   ci-embedded.sh   Rust firmware under QEMU, WASM under node, size budgets
@@ -11,6 +12,17 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$(date +%s)
+# OpenSubdiv (libosd-dev), the oracle of capdiv-mesh's tests (mesh/tests/osd).
+if [ ! -d /usr/include/opensubdiv ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends libosd-dev >/dev/null
+fi
+if ! command -v g++ >/dev/null; then
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends g++ >/dev/null
+fi
 cargo test --workspace --release
 cargo test -p capdiv --release --features micromath --test micromath
 for check in embedded stream cfirmware viewer fuzz miri; do
