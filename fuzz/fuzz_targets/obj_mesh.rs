@@ -163,11 +163,6 @@ fn acceptable(mesh: &MeshInput) -> bool {
             .faces
             .iter()
             .all(|f| f.iter().enumerate().all(|(k, v)| !f[..k].contains(v)))
-        // A face listing a vertex twice is refused (documented).
-        && mesh
-            .faces
-            .iter()
-            .all(|f| (1..f.len()).all(|k| !f[..k].contains(&f[k])))
         && mesh
             .tags
             .creases
