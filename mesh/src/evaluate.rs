@@ -190,7 +190,7 @@ pub struct Evaluator<R: Real> {
     cc: Vec<Point3<R>>,
     eg: Box<EgSubdivision<'static, R>>,
     /// Rule (7) in the Fourier basis for each built-in EG valence the plan
-    /// has (n = 3, 5), built once: the caps' fast step (issue 9).
+    /// has (n = 3, 5), built once: the caps' fast step.
     eg_rules: Vec<FourierRule<'static, R>>,
 }
 

@@ -3,7 +3,8 @@
 //! patch and cap, and the refinement step when the mesh needs one. Positions
 //! play no part; [`crate::evaluate`] runs the plan on positions.
 //!
-//! Coverage rules (issue 7):
+//! Coverage rules, for faces and configurations that no tag reaches (see
+//! [`SurfacePlan::for_mesh`]):
 //! 1. a regular face (a quad with four regular corners, its 4×4 neighbourhood
 //!    a grid, phantom points at a boundary) is a uniform bicubic B-spline
 //!    patch;
@@ -15,12 +16,14 @@
 //!    regular: its c-net exists, spec EG.md §1) is an EG cap for n = 3, 5 and
 //!    for n = 6..10 with a rule table, else a Catmull-Clark cap, over its n
 //!    faces;
-//! 4. anything else is uncovered. When a reason for that can be cured by
-//!    refinement, the whole mesh is refined once (Catmull-Clark, C²PS at
-//!    poles) and analysed again — at most [`MAX_STEPS`] times: one step
-//!    makes every face a quad and separates extraordinary points, but a quad
-//!    can then hold two of them at opposite corners (an old vertex and the
-//!    centre of a non-quad face), which a second step separates.
+//! 4. in a mesh without tags, when a reason a face has no patch can be
+//!    cured by refinement, the whole mesh is refined once (Catmull-Clark,
+//!    C²PS at poles) and analysed again — at most [`MAX_STEPS`] times: one
+//!    step makes every face a quad and separates extraordinary points, but a
+//!    quad can then hold two of them at opposite corners (an old vertex and
+//!    the centre of a non-quad face), which a second step separates;
+//! 5. every face left is refined adaptively with OpenSubdiv's rules
+//!    ([`crate::adaptive`]): nothing is left uncovered.
 //!
 //! With [`PlanOptions::catmull_clark`] every cap is a Catmull-Clark cap (the
 //! papers' baseline): rule 2 is skipped (a fan's triangles are non-quad faces,

@@ -1,10 +1,11 @@
 //! `capdiv surface`: a whole polygon mesh to a smooth surface through
-//! `capdiv_mesh` (issue 7).
+//! `capdiv_mesh`.
 //!
-//! The mesh is Wavefront OBJ or JSON `{"kind": "mesh", "vertices", "faces"}`,
-//! chosen by content ([`looks_like_json`]). It is validated
-//! ([`Topology::new`]), analysed once ([`SurfacePlan::new`]: regular faces,
-//! polar fans, extraordinary points, at most two refinement steps) and
+//! The mesh is Wavefront OBJ (with OpenSubdiv's `t` tag lines) or JSON
+//! `{"kind": "mesh", "vertices", "faces"}` (with optional tag fields),
+//! chosen by content ([`looks_like_json`]). It is validated and analysed
+//! once with its tags ([`SurfacePlan::for_mesh`]: regular faces, polar fans,
+//! extraordinary points, adaptive refinement of the rest) and
 //! evaluated in the precision asked for ([`Evaluator`]). Output:
 //!
 //! - `json`: `{"patches": [...], "caps": [...], "summary": {...}}` (see

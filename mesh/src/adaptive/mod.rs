@@ -2,7 +2,7 @@
 //! Meyer & DeRose 2012; OpenSubdiv's `RefineAdaptive`): every face that no
 //! cap and no level-0 patch covers is refined on its own, as deep as it
 //! needs, with the `Sdc` rules for creases, corners, boundaries, holes and
-//! non-manifold features ([`refine`]). A face that is regular at some level
+//! non-manifold features ([`mod@refine`]). A face that is regular at some level
 //! ([`regular`]) is a uniform B-spline patch there; around an irregular
 //! vertex the faces refine into rings converging to it until `depth`, and
 //! the last ring's hole is closed to the vertex's limit point; semi-sharp
