@@ -6,7 +6,7 @@
 //!
 //! Output points are counted as points: a step to valence n writes 5 links
 //! of n points and the pole, `5n + 1` (the reference: `n` columns, counted
-//! per column). Side by side, in the same run (issue 9): subdiv-kernels'
+//! per column). Side by side, in the same run: subdiv-kernels'
 //! Catmull-Clark refinement of the same polar net (the net the C²PS step
 //! starts from, as a mesh: a fan of triangles around the pole, quads between
 //! links), its stencils applied once with `interpolate_rows`, per output

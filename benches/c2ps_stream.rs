@@ -1,4 +1,4 @@
-//! Streaming C²PS (issue 9) against the in-place path: all ring patches of
+//! Streaming C²PS against the in-place path: all ring patches of
 //! levels 0..=M of a valence-6 configuration (5 links), time per patch, f64
 //! and f32, M = 6, 8, 10, 12. Both workloads build every patch and hand it
 //! to `black_box`:

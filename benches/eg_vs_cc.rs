@@ -1,4 +1,4 @@
-//! EG against Catmull-Clark on the same c-net, in one run (issue 9: "switching
+//! EG against Catmull-Clark on the same c-net, in one run ("switching
 //! a cap from Catmull-Clark to EG at most doubles its cost", EG paper §8).
 //!
 //! For n = 3 and 5, f64 and f32, on one c-net (spec EG.md §1: center and 6

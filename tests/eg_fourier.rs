@@ -1,4 +1,4 @@
-//! `EgSubdivision::step_fourier` (issue 9's fast EG step, `FourierRule`):
+//! `EgSubdivision::step_fourier` (the fast EG step, `FourierRule`):
 //! the same subdivision as `step` over many steps, its errors, and the
 //! overflow contract (state unchanged on `NonFinite`). The matrix comparison
 //! is in `host-tests/tests/eg_kernel_vs_matrix.rs`, the f32 bound in

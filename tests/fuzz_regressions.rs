@@ -1,4 +1,4 @@
-//! Findings of the coverage-guided fuzz targets (`fuzz/`, issue 10), each with
+//! Findings of the coverage-guided fuzz targets (`fuzz/`), each with
 //! its minimized input inline.
 
 use capdiv::{CcCap, Point3, PoleJet};

@@ -1,4 +1,4 @@
-//! The numeric contract at the edges of the floating-point range (issue 10):
+//! The numeric contract at the edges of the floating-point range:
 //! for huge (near and beyond `MAX/1024`, up to `MAX`), tiny (`MIN_POSITIVE`),
 //! subnormal, mixed-scale (one coordinate 1e30, the rest 1e-30) and zero-size
 //! nets, in f32 and f64, every call of C²PS (step, RTS step, ring patches,
@@ -276,7 +276,7 @@ fn eg_contract<R: Range>(n: usize, scale: Scale, seed: u64) -> Result<(), TestCa
         }
     };
     prop_assert!(eg.net().is_finite());
-    // The Fourier step (issue 9) alongside: the same outcome at every scale,
+    // The Fourier step alongside: the same outcome at every scale,
     // its state unchanged on error.
     let mut fast = eg.clone();
     let rule = eg.table().map(|t| FourierRule::new(t).unwrap());

@@ -1,4 +1,4 @@
-//! subdiv-kernels as a Catmull-Clark peer (issue 9): a mesh from faces, the
+//! subdiv-kernels as a Catmull-Clark peer: a mesh from faces, the
 //! stencils of one refinement, applied to `[f32; 3]` or `[f64; 3]` points.
 
 use capdiv::Real;

@@ -1,4 +1,4 @@
-//! Pictures of [`Shape`]s shaded per pixel from the exact patches (issue 8):
+//! Pictures of [`Shape`]s shaded per pixel from the exact patches:
 //! `capdiv render` and `capdiv compare`.
 //!
 //! 1. Every patch is tessellated on a `grid × grid` parameter grid; each

@@ -172,7 +172,7 @@ pub fn eg_samples() -> Vec<EgSample> {
     ]
 }
 
-/// The papers' kinds of test nets (issue 8), built in code and read by
+/// The papers' kinds of test nets, built in code and read by
 /// `render`, `compare` and `curvature` as `sample:NAME`:
 ///
 /// - `c2ps-convex-n20`: a convex polar configuration of valence 20 (as in

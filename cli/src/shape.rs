@@ -1,4 +1,4 @@
-//! The surface a picture or a curvature table is made of (issue 8): every
+//! The surface a picture or a curvature table is made of: every
 //! input kind under every scheme that applies, as one list of Bézier patches
 //! (f64) that know their ring level, which of their edges border the cap's
 //! last hole, and the cap's limit point.

@@ -1,4 +1,4 @@
-//! Issue 8: the numbers behind the pictures. Curvature from the patches'
+//! The numbers behind the pictures. Curvature from the patches'
 //! derivatives (`TensorPatch::jet` + `SurfaceJet::geometry`) against the
 //! C²PS pole jet (spec C2PS.md §4) and analytic quadrics; the `curvature`
 //! table's convergence for C²PS and divergence for Catmull-Clark; the

@@ -1,4 +1,4 @@
-//! `capdiv patches --stream` (issue 9): the same patches as without it, in
+//! `capdiv patches --stream`: the same patches as without it, in
 //! the same order and the same layout (JSON compact and pretty, OBJ), equal
 //! to rounding — f64 within 1e-12 and f32 within 1e-6 of the input's size
 //! (the kernel's streaming bounds, tests/polar_stream.rs) — checks before any

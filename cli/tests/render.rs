@@ -1,4 +1,4 @@
-//! Issue 8: `capdiv render` and `capdiv compare`. The numbers the pictures
+//! `capdiv render` and `capdiv compare`. The numbers the pictures
 //! are made of (per-pixel exact normals → highlight lines of a plane), and
 //! the commands' PNGs: size, drawn pixels, the hatched hole, the legend, the
 //! labels, errors.

@@ -1,4 +1,4 @@
-//! Host-side drivers for capdiv's embedded targets (issue 4): build the
+//! Host-side drivers for capdiv's embedded targets: build the
 //! firmware, run it under QEMU with a time limit, decode its defmt log, parse
 //! the report lines; run the WASM demo under node.
 //!

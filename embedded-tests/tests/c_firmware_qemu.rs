@@ -1,4 +1,4 @@
-//! The C firmware under QEMU (issue 9): `cfirmware/` is C code that links
+//! The C firmware under QEMU: `cfirmware/` is C code that links
 //! capdiv's C ABI (`capi/`, a Rust staticlib) through the generated header
 //! `capi/include/capdiv.h`. This test builds it with Debian's
 //! `arm-none-eabi-gcc` for the Cortex-M4F (QEMU `mps2-an386`) and the

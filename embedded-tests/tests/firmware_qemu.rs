@@ -1,4 +1,4 @@
-//! The firmware under QEMU (issue 4): build it, run it with a time limit,
+//! The firmware under QEMU: build it, run it with a time limit,
 //! decode its defmt log and compare every number it reports with the same
 //! computation in `f64` on the host: the kernel's `f64` path for every number,
 //! and for the C²PS numbers also the independent reference crate
@@ -172,7 +172,7 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     }
 }
 
-/// EG steps the firmware applies to each sample (spec EG.md; issue 4: n = 3, 5).
+/// EG steps the firmware applies to each sample (spec EG.md: n = 3, 5).
 const EG_STEPS: u32 = 4;
 
 /// The C²PS numbers of `firmware/src/c2ps.rs` from the independent reference

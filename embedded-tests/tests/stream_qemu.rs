@@ -1,4 +1,4 @@
-//! Streaming C²PS on the Cortex-M0 (issue 9): the firmware's `c2ps-stream`
+//! Streaming C²PS on the Cortex-M0: the firmware's `c2ps-stream`
 //! build (QEMU `microbit`, 16 KiB RAM) streams the valence-6 sample to depth
 //! 12 with the kernel's `PolarStream<f32, 12>` and logs, per level, the patch
 //! count and an order-sensitive weighted mean of all control points

@@ -1,4 +1,4 @@
-//! The WASM module under node (issue 4): build `wasm/` for
+//! The WASM module under node: build `wasm/` for
 //! `wasm32-unknown-unknown`, run `wasm/demo.mjs` (which instantiates it with no
 //! imports, so a panic path left in the module fails here), and recompute
 //! every case — C²PS refinement and pole jet, EG d-nets and rings — with the

@@ -9,7 +9,7 @@
 //!
 //! Panic-free: in release builds the panic handler calls a symbol that exists
 //! nowhere, so the image links only if the optimiser removed every panic path
-//! from the kernel calls made here and from this firmware (issue 4).
+//! from the kernel calls made here and from this firmware.
 #![no_std]
 #![no_main]
 

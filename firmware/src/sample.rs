@@ -141,7 +141,7 @@ pub const EG_NODES_5: [[f64; 3]; 30] = [
 
 // The samples in `f32`, converted at compile time (exactly: every coordinate
 // is dyadic). The firmware reads these, so neither the `f64` arrays (2.1 KiB)
-// nor the soft-float `f64 → f32` conversion reach its flash (issue 9).
+// nor the soft-float `f64 → f32` conversion reach its flash.
 
 /// [`POLE`] in `f32`.
 pub const POLE_F32: [f32; 3] = points_f32(&[POLE])[0];

@@ -1,4 +1,4 @@
-//! Link-time panic check of the kernel's public API (issue 4).
+//! Link-time panic check of the kernel's public API.
 //!
 //! The workloads call the kernel with the fixed sample data, and LTO may fold
 //! away checks that only those inputs make dead. Here every public

@@ -1,4 +1,4 @@
-//! Streaming C²PS (`PolarStream`, issue 9) on arbitrary f32 / f64 bit
+//! Streaming C²PS (`PolarStream`) on arbitrary f32 / f64 bit
 //! patterns: valences 0..=48, 0..=7 links, depths 0..=7 (the state holds 6),
 //! both first-step variants, arbitrary level and span filters.
 //!

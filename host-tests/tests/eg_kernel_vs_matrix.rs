@@ -95,7 +95,7 @@ proptest! {
         prop_assert!(deviation(5, &sectors, c0, true) <= 1e-12);
     }
 
-    /// The Fourier path (issue 9's fast step) against the same matrix, same
+    /// The Fourier path against the same matrix, same
     /// tolerance: the transform's sums have at most 2n terms of weight ≤ 2
     /// per product, so its round-off stays at a few 1e-16 as well.
     #[test]

@@ -1,4 +1,4 @@
-//! Whole-mesh surfaces (issue 7): analysis (topology + plan, once per mesh)
+//! Whole-mesh surfaces: analysis (topology + plan, once per mesh)
 //! and evaluation (positions → every patch and cap) on generated meshes of
 //! 10³ to 10⁶ faces, per input face and per emitted patch, f64.
 //!

@@ -1,4 +1,4 @@
-//! `PlanOptions::catmull_clark` (issue 8: the papers' baseline): every cap is
+//! `PlanOptions::catmull_clark` (the papers' baseline): every cap is
 //! a Catmull-Clark cap. Checked (1) on extraordinary points of valence 3 and
 //! 5, whose CC caps must equal the literal reference's Catmull-Clark step on
 //! the c-net the test reads off `extraordinary_disk` by construction (as

@@ -1,4 +1,4 @@
-//! Issue 7, property 2: every cap equals the kernel (or the literal
+//! Every cap equals the kernel (or the literal
 //! reference) run on the configuration the TEST extracts from the mesh by
 //! construction of the sample (pole and links of `pole_disk`/`globe`, the
 //! c-net of `extraordinary_disk`), compared level by level as sets of Bézier

@@ -1,4 +1,4 @@
-//! Issue 7, property 1: regular faces are the uniform bicubic B-spline of
+//! Regular faces are the uniform bicubic B-spline of
 //! their 4×4 neighbourhood, gathered here from the known vertex layout of the
 //! sample meshes (never from the plan), evaluated with the literal B-spline
 //! basis and compared through the patch's domain and the face's orientation

@@ -1,4 +1,4 @@
-//! Issue 7, properties 4 and 5: bad meshes give their `MeshError` through
+//! Bad meshes give their `MeshError` through
 //! the whole path (`parse_obj` → `Topology::new`); random and mutated face
 //! lists never make the analysis or the evaluation panic, and every plan
 //! that is made evaluates to finite patches; f32 evaluation tracks f64.

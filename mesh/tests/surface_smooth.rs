@@ -1,4 +1,4 @@
-//! Issue 7, property 3: smoothness and coverage on generated meshes.
+//! Smoothness and coverage on generated meshes.
 //!
 //! Every patch edge (but the edges around a cap's last hole) is sampled at
 //! t = k/16; samples of different patches are matched by position (a hash on

@@ -61,7 +61,7 @@ pub use subdivision::{EgRingPatches, EgSubdivision, PatchDomain};
 /// The largest valence EG supports (the paper's tables stop at 10).
 pub const MAX_VALENCE: usize = 10;
 
-// With the `defmt` feature every public EG type is `defmt::Format` (issue 4),
+// With the `defmt` feature every public EG type is `defmt::Format`,
 // checked here at compile time for both scalar types.
 #[cfg(feature = "defmt")]
 const _: () = {

@@ -6,7 +6,7 @@
 //! every unproven `s[i]` leaves a panic path in the binary. These helpers turn
 //! that path into a plain branch: same results for every in-range index, and
 //! an out-of-range one — unreachable — reads `fallback` / writes nothing
-//! instead of panicking. The firmware's link-time panic check (issue 4) relies
+//! instead of panicking. The firmware's link-time panic check relies
 //! on them.
 
 /// `s[i]`, or `fallback` when `i` is out of range.
