@@ -161,6 +161,25 @@ impl FaceChart {
             map: Affine::IDENTITY,
         }
     }
+
+    /// The chart of the sub-quad at corner `k` of a face with `n` corners
+    /// and this chart (a Catmull-Clark child): the quadrant of this square,
+    /// or, for an input face that is not a quad, its corner's own square.
+    pub fn child(&self, k: usize, n: usize) -> Self {
+        if n == 4 || self.corner.is_some() {
+            FaceChart {
+                face: self.face,
+                corner: self.corner,
+                map: self.map.compose(&Affine::quadrant(k)),
+            }
+        } else {
+            FaceChart {
+                face: self.face,
+                corner: Some(k as u8),
+                map: Affine::IDENTITY,
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -39,7 +39,7 @@ use crate::grid::{face_grid, Combo};
 use crate::input::MeshInput;
 use crate::refine::{refine, PolarSeed};
 use crate::stencil::StencilTable;
-use crate::topology::{Topology, NONE};
+use crate::topology::{check_sizes_and_positions, Topology, NONE};
 use alloc::collections::BTreeSet;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -757,23 +757,9 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
 /// an index out of range (and, unlike OpenSubdiv, a vertex listed twice),
 /// then tags naming a vertex or face that does not exist.
 fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
+    check_sizes_and_positions(mesh)?;
     let nv = mesh.vertices.len();
     let nf = mesh.faces.len();
-    if nf == 0 || nv == 0 {
-        return Err(MeshError::Empty);
-    }
-    let corners: usize = mesh.faces.iter().map(|f| f.len()).sum();
-    let limit = (i32::MAX as usize) - 1;
-    if nv > limit || nf > limit || corners > limit {
-        return Err(MeshError::TooLarge);
-    }
-    if let Some(vertex) = mesh
-        .vertices
-        .iter()
-        .position(|p| !p.iter().all(|c| c.is_finite()))
-    {
-        return Err(MeshError::NonFinite { vertex });
-    }
     for (face, f) in mesh.faces.iter().enumerate() {
         if f.len() < 3 {
             return Err(MeshError::FaceTooSmall { face, len: f.len() });

@@ -29,7 +29,7 @@
 //!   boundary neighbours); boundary vertex with one face (a corner) `v`;
 //!   a vertex no face uses: `v`.
 
-use crate::chart::{Affine, FaceChart};
+use crate::chart::FaceChart;
 use crate::stencil::StencilTable;
 use crate::topology::{Topology, NONE};
 use alloc::vec;
@@ -306,19 +306,7 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
                 continue;
             }
             faces.push(vec![vp, e_next, fp, e_prev]);
-            out_charts.push(if k == 4 || chart.corner.is_some() {
-                FaceChart {
-                    face: chart.face,
-                    corner: chart.corner,
-                    map: chart.map.compose(&Affine::quadrant(corner)),
-                }
-            } else {
-                FaceChart {
-                    face: chart.face,
-                    corner: Some(corner as u8),
-                    map: Affine::IDENTITY,
-                }
-            });
+            out_charts.push(chart.child(corner, k));
             parent.push(f as u32);
         }
     }

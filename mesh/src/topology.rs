@@ -23,6 +23,30 @@ use alloc::vec::Vec;
 /// "No half-edge" (a boundary edge has no twin).
 pub const NONE: u32 = u32::MAX;
 
+/// The first checks of every mesh, in this order: no faces or vertices
+/// ([`MeshError::Empty`]), more than 2³¹ items ([`MeshError::TooLarge`]), a
+/// non-finite coordinate ([`MeshError::NonFinite`]).
+pub fn check_sizes_and_positions(mesh: &MeshInput) -> Result<(), MeshError> {
+    let nv = mesh.vertices.len();
+    let nf = mesh.faces.len();
+    if nf == 0 || nv == 0 {
+        return Err(MeshError::Empty);
+    }
+    let corners: usize = mesh.faces.iter().map(|f| f.len()).sum();
+    let limit = (i32::MAX as usize) - 1;
+    if nv > limit || nf > limit || corners > limit {
+        return Err(MeshError::TooLarge);
+    }
+    if let Some(vertex) = mesh
+        .vertices
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        return Err(MeshError::NonFinite { vertex });
+    }
+    Ok(())
+}
+
 /// The half-edge structure of a validated mesh.
 #[derive(Clone, Debug)]
 pub struct Topology {
@@ -48,24 +72,8 @@ impl Topology {
     /// Validates `mesh` and builds its half-edges. See the module doc for the
     /// checks and their order.
     pub fn new(mesh: &MeshInput) -> Result<Self, MeshError> {
-        let nv = mesh.vertices.len();
-        let nf = mesh.faces.len();
-        if nf == 0 || nv == 0 {
-            return Err(MeshError::Empty);
-        }
-        let corners: usize = mesh.faces.iter().map(|f| f.len()).sum();
-        let limit = (i32::MAX as usize) - 1;
-        if nv > limit || nf > limit || corners > limit {
-            return Err(MeshError::TooLarge);
-        }
-        if let Some(vertex) = mesh
-            .vertices
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(MeshError::NonFinite { vertex });
-        }
-        Self::from_faces(nv, &mesh.faces)
+        check_sizes_and_positions(mesh)?;
+        Self::from_faces(mesh.vertices.len(), &mesh.faces)
     }
 
     /// [`Self::new`] without positions: `nv` vertices and the face lists

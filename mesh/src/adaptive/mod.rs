@@ -20,7 +20,7 @@ pub mod points;
 pub mod refine;
 pub mod regular;
 
-use crate::chart::{Affine, FaceChart};
+use crate::chart::FaceChart;
 use alloc::collections::{BTreeMap, BTreeSet};
 use alloc::vec;
 use alloc::vec::Vec;
@@ -223,19 +223,7 @@ fn visit(
     let n = m.face(f).len();
     let first = child.first[at] as usize;
     for k in 0..n {
-        let sub = if n == 4 || chart.corner.is_some() {
-            FaceChart {
-                face: chart.face,
-                corner: chart.corner,
-                map: chart.map.compose(&Affine::quadrant(k)),
-            }
-        } else {
-            FaceChart {
-                face: chart.face,
-                corner: Some(k as u8),
-                map: Affine::IDENTITY,
-            }
-        };
+        let sub = chart.child(k, n);
         visit(
             cm,
             first + k,
