@@ -11,7 +11,7 @@
 //! starts from, as a mesh: a fan of triangles around the pole, quads between
 //! links), its stencils applied once with `interpolate_rows`, per output
 //! vertex. `scripts/bench-table.py c2ps-vs-cc` and
-//! `scripts/bench-table.py GROUP…` turn the results into the README's tables.
+//! `scripts/bench-table.py GROUP…` turn the results into the tables of docs/benchmarks.md.
 
 use capdiv::{FirstStep, PolarNet, Real};
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput};

@@ -9,7 +9,7 @@
 # (the machine has 2 cores; the groups are balanced by measured run time).
 # The tests reduce their sizes under cfg(miri) themselves (proptest cases,
 # valences, levels, loop counts); a few are `#[cfg_attr(miri, ignore)]`
-# with the reason in the attribute (see README "Fuzzing and Miri").
+# with the reason in the attribute (see docs/verification.md, "Fuzzing and Miri").
 # Exits non-zero on any UB report or test failure, or when a group exceeds
 # MIRI_TIMEOUT seconds (default 900).
 #

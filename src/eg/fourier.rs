@@ -17,7 +17,7 @@
 //! the rule is built. Per step that is `12·(n + …)` point operations for the
 //! transforms and `72·(2n − 1)` (odd n) for the products, against `72n²` for
 //! the dense sum: 666 → ~520 point terms at n = 3, 1,830 → ~1,000 at n = 5
-//! (`benches/eg_vs_cc.rs`; README, Benchmarks, "EG against Catmull-Clark").
+//! (`benches/eg_vs_cc.rs`; docs/benchmarks.md, "EG against Catmull-Clark").
 //!
 //! The outer nodes (§5) are convex combinations of 9 old nodes, with the
 //! three sectors a stencil reads picked once per sector and the stencils

@@ -26,7 +26,7 @@
 //! sums of levels ≥ 1 are the exact closed forms instead of sums over
 //! `N` points, the roots are rotated per level in `f64`/`R` instead of read
 //! from a doubled ring): tested on every patch within `1e-12` (f64) and the
-//! README's f32 bound of the configuration's size, `tests/polar_stream.rs`.
+//! docs/kernel.md's f32 bound of the configuration's size, `tests/polar_stream.rs`.
 
 use super::jet::PoleJet;
 use super::net::{held_after_step, validate, FirstStep, MAX_STORED_LINKS};
