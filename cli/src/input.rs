@@ -30,7 +30,7 @@
 //! ```json
 //! {"creases": [[a, b, sharpness], ...], "corners": [[v, sharpness], ...],
 //!  "holes": [f, ...], "boundary": "none" | "edge-only" | "edge-and-corner",
-//!  "crease_method": "normal" | "chaikin"}
+//!  "crease_method": "normal" | "chaikin", "triangles": "catmark" | "smooth"}
 //! ```
 //!
 //! Unknown fields are rejected.
@@ -58,7 +58,8 @@ pub enum Input {
 }
 
 /// `{"kind": "mesh", "vertices", "faces"}` and the optional subdivision
-/// tags `creases`, `corners`, `holes`, `boundary`, `crease_method`.
+/// tags `creases`, `corners`, `holes`, `boundary`, `crease_method`,
+/// `triangles`.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshJson {
@@ -81,6 +82,9 @@ pub struct MeshJson {
     /// The creasing method (default `normal`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crease_method: Option<CreaseMethodJson>,
+    /// The edge rule next to triangles (default `catmark`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangles: Option<TrianglesJson>,
     /// Tags an OBJ file had that are not applied (name, line); not part of
     /// the JSON, carried so that a mesh read from OBJ keeps them.
     #[serde(skip)]
@@ -127,6 +131,17 @@ pub enum CreaseMethodJson {
     Normal,
     /// [`capdiv_mesh::CreaseMethod::Chaikin`].
     Chaikin,
+}
+
+/// `"triangles"` of a JSON mesh (OpenSubdiv's shape-file names of
+/// `Sdc::Options::TriangleSubdivision`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TrianglesJson {
+    /// [`capdiv_mesh::TriangleSubdivision::Catmark`].
+    Catmark,
+    /// [`capdiv_mesh::TriangleSubdivision::Smooth`].
+    Smooth,
 }
 
 impl MeshJson {
@@ -190,6 +205,10 @@ impl MeshJson {
             None | Some(CreaseMethodJson::Normal) => CreaseMethod::Uniform,
             Some(CreaseMethodJson::Chaikin) => CreaseMethod::Chaikin,
         };
+        tags.triangles = match self.triangles {
+            None | Some(TrianglesJson::Catmark) => capdiv_mesh::TriangleSubdivision::Catmark,
+            Some(TrianglesJson::Smooth) => capdiv_mesh::TriangleSubdivision::Smooth,
+        };
         Ok(capdiv_mesh::MeshInput {
             vertices: self.vertices.clone(),
             faces,
@@ -226,6 +245,10 @@ impl MeshJson {
             crease_method: match t.crease_method {
                 capdiv_mesh::CreaseMethod::Uniform => None,
                 capdiv_mesh::CreaseMethod::Chaikin => Some(CreaseMethodJson::Chaikin),
+            },
+            triangles: match t.triangles {
+                capdiv_mesh::TriangleSubdivision::Catmark => None,
+                capdiv_mesh::TriangleSubdivision::Smooth => Some(TrianglesJson::Smooth),
             },
             ignored: t.ignored.clone(),
         }

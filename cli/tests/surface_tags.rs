@@ -31,6 +31,7 @@ t hole 1/0/0 3
 t interpolateboundary 1/0/0 2
 t creasemethod 0/0/1 chaikin
 t smoothtriangles 0/0/1 smooth
+t facevaryingpropagatecorners 1/0/0 1
 ";
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
@@ -54,8 +55,8 @@ fn obj_tags_are_read_and_reported() {
         summary_tags(&json),
         &json!({
             "creases": 2, "corners": 1, "holes": 1,
-            "boundary": "edge-only", "crease_method": "chaikin",
-            "ignored": [{"name": "smoothtriangles", "line": 19}]
+            "boundary": "edge-only", "crease_method": "chaikin", "triangles": "smooth",
+            "ignored": [{"name": "facevaryingpropagatecorners", "line": 20}]
         })
     );
     assert_eq!(json["summary"]["scheme"], "default");
@@ -70,8 +71,9 @@ fn obj_tags_are_read_and_reported() {
         "1 hole(s)",
         "boundary edge-only",
         "creasing chaikin",
+        "triangles smooth",
         "scheme default",
-        "ignored tags: smoothtriangles (line 19)",
+        "ignored tags: facevaryingpropagatecorners (line 20)",
     ] {
         assert!(tags.contains(part), "{tags:?} lacks {part:?}");
     }
@@ -91,7 +93,7 @@ fn an_untagged_mesh_reports_the_defaults() {
         summary_tags(&json),
         &json!({
             "creases": 0, "corners": 0, "holes": 0,
-            "boundary": "edge-and-corner", "crease_method": "normal",
+            "boundary": "edge-and-corner", "crease_method": "normal", "triangles": "catmark",
             "ignored": []
         })
     );
@@ -191,7 +193,8 @@ fn json_mesh_tags_are_read_like_obj_tags() {
         "corners": [[0, 10]],
         "holes": [3],
         "boundary": "edge-only",
-        "crease_method": "chaikin"
+        "crease_method": "chaikin",
+        "triangles": "smooth"
     });
     let path = write_json(dir.path(), "grid.json", &mesh);
     let from_json = capdiv(&["surface", "--quiet", "--depth", "2", s(&path)], None).ok_json();
@@ -203,6 +206,7 @@ fn json_mesh_tags_are_read_like_obj_tags() {
     for (field, value) in [
         ("boundary", json!("edge-only")),
         ("crease_method", json!("normal")),
+        ("triangles", json!("catmark")),
         ("holes", json!([])),
     ] {
         let mut m = json!({"kind": "mesh", "vertices": vertices,

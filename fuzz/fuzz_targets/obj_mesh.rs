@@ -32,7 +32,8 @@ use capdiv_mesh::obj::parse_obj;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry, TessPatch};
 use capdiv_mesh::{
     samples, BoundaryInterpolation, CapRecord, CreaseMethod, EdgeCrease, Evaluator, MeshInput,
-    PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology, VertexCorner,
+    PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology, TriangleSubdivision,
+    VertexCorner,
 };
 use libfuzzer_sys::fuzz_target;
 
@@ -315,6 +316,9 @@ fn arb_tags(u: &mut Unstructured<'_>, mesh: &mut MeshInput) -> Result<()> {
     };
     if u.arbitrary()? {
         tags.crease_method = CreaseMethod::Chaikin;
+    }
+    if u.arbitrary()? {
+        tags.triangles = TriangleSubdivision::Smooth;
     }
     Ok(())
 }

@@ -83,6 +83,39 @@ impl CreaseMethod {
     }
 }
 
+/// OpenSubdiv's rule for the edges of triangles
+/// (`Sdc::Options::TriangleSubdivision`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TriangleSubdivision {
+    /// `TRI_SUB_CATMARK`: Catmull-Clark's edge rule for every face.
+    #[default]
+    Catmark,
+    /// `TRI_SUB_SMOOTH`: an edge of one or two triangles between two faces
+    /// weighs each triangle's centroid 0.47 instead of 0.25
+    /// (`Sdc::Scheme<SCHEME_CATMARK>::assignSmoothMaskForEdge`), which brings
+    /// the surface over triangles closer to Loop's.
+    Smooth,
+}
+
+impl TriangleSubdivision {
+    /// The name used on the command line, in JSON and in shape files.
+    pub fn id(self) -> &'static str {
+        match self {
+            TriangleSubdivision::Catmark => "catmark",
+            TriangleSubdivision::Smooth => "smooth",
+        }
+    }
+
+    /// The rule named `s` (see [`TriangleSubdivision::id`]).
+    pub fn from_id(s: &str) -> Option<Self> {
+        match s {
+            "catmark" => Some(TriangleSubdivision::Catmark),
+            "smooth" => Some(TriangleSubdivision::Smooth),
+            _ => None,
+        }
+    }
+}
+
 /// An edge sharpness: the edge between two vertices (either order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EdgeCrease {
@@ -116,12 +149,15 @@ pub struct SubdivTags {
     pub boundary: BoundaryInterpolation,
     /// The creasing method.
     pub crease_method: CreaseMethod,
+    /// The edge rule next to triangles.
+    pub triangles: TriangleSubdivision,
     /// Tags read but not applied (name and 1-based line), for the summary.
     pub ignored: Vec<(String, usize)>,
 }
 
 impl SubdivTags {
-    /// No crease, corner or hole and the default rules: the mesh is a plain
+    /// No crease, corner or hole and the default boundary and triangle
+    /// rules: the mesh is a plain
     /// Catmull-Clark control mesh.
     pub fn is_plain(&self) -> bool {
         self.creases
@@ -133,5 +169,6 @@ impl SubdivTags {
                 .all(|c| c.sharpness.is_nan() || c.sharpness <= 0.0)
             && self.holes.is_empty()
             && self.boundary == BoundaryInterpolation::EdgeAndCorner
+            && self.triangles == TriangleSubdivision::Catmark
     }
 }

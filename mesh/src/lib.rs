@@ -34,7 +34,8 @@ pub mod topology;
 pub use error::MeshError;
 pub use evaluate::{CapRecord, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink};
 pub use input::{
-    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, VertexCorner,
+    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
+    VertexCorner,
 };
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
 pub use stencil::StencilTable;

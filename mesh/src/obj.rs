@@ -28,10 +28,13 @@
 //!   1 edge-and-corner, 2 edge-only (without the tag: edge-and-corner,
 //!   [`BoundaryInterpolation`]'s default, where far_utils.h would start
 //!   from edge-only);
-//! - `creasemethod`: one string, `normal` or `chaikin`.
+//! - `creasemethod`: one string, `normal` or `chaikin`;
+//! - `smoothtriangles`: one string, `catmark` or `smooth` (far_utils.h), or
+//!   one integer, 0 or 1 (Hbr's shape files): [`TriangleSubdivision`].
 //!
-//! A later `interpolateboundary` or `creasemethod` replaces an earlier one.
-//! Any other tag name (`smoothtriangles`, `facevaryinginterpolateboundary`,
+//! A later `interpolateboundary`, `creasemethod` or `smoothtriangles`
+//! replaces an earlier one.
+//! Any other tag name (`facevaryinginterpolateboundary`,
 //! `facevaryingpropagatecorners`, `vertexedit`, …) is syntax-checked and
 //! listed in [`SubdivTags::ignored`] with its line, not applied. Where
 //! OpenSubdiv's tools would print a warning and go on (a count, value or
@@ -50,7 +53,8 @@
 
 use crate::error::MeshError;
 use crate::input::{
-    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, VertexCorner,
+    BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
+    VertexCorner,
 };
 use crate::tags::TagCheck;
 use alloc::format;
@@ -433,6 +437,30 @@ impl Reader {
                     }
                 };
             }
+            "smoothtriangles" => {
+                // far_utils.h reads the string `catmark` or `smooth`; Hbr's
+                // older shape files give the integer 0 or 1.
+                let rule = match (ni, ns) {
+                    (0, 1) => TriangleSubdivision::from_id(strings[0]),
+                    (1, 0) => match ints[0] {
+                        0 => Some(TriangleSubdivision::Catmark),
+                        1 => Some(TriangleSubdivision::Smooth),
+                        _ => None,
+                    },
+                    _ => {
+                        return Err(String::from(
+                            "tag smoothtriangles: takes one string (catmark or smooth) \
+                             or one integer (0 or 1)",
+                        ))
+                    }
+                };
+                if !floats.is_empty() {
+                    return Err(String::from("tag smoothtriangles: takes no floats"));
+                }
+                self.tags.triangles = rule.ok_or_else(|| {
+                    String::from("tag smoothtriangles: is not `catmark` or `smooth` (0 or 1)")
+                })?;
+            }
             _ => self.tags.ignored.push((String::from(name), line)),
         }
         Ok(())
@@ -730,9 +758,31 @@ mod tests {
     }
 
     #[test]
+    fn smoothtriangles_tag_in_far_and_hbr_forms() {
+        let m = with_tags("t smoothtriangles 0/0/1 smooth\n").unwrap();
+        assert_eq!(m.tags.triangles, TriangleSubdivision::Smooth);
+        assert!(!m.tags.is_plain());
+        let m = with_tags("t smoothtriangles 1/0/0 1\nt smoothtriangles 0/0/1 catmark\n").unwrap();
+        assert_eq!(m.tags.triangles, TriangleSubdivision::Catmark);
+        assert!(m.tags.is_plain());
+        let m = with_tags("t smoothtriangles 1/0/0 1\n").unwrap();
+        assert_eq!(m.tags.triangles, TriangleSubdivision::Smooth);
+        assert!(m.tags.ignored.is_empty());
+        for bad in [
+            "t smoothtriangles 0/0/1 loop\n",
+            "t smoothtriangles 1/0/0 2\n",
+            "t smoothtriangles 0/0/0\n",
+            "t smoothtriangles 0/1/0 1\n",
+        ] {
+            let e = with_tags(bad).unwrap_err().to_string();
+            assert!(e.contains("smoothtriangles"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
     fn tags_not_applied_are_listed_with_their_line() {
         let m = with_tags(
-            "t smoothtriangles 0/0/1 smooth\n\
+            "t facevaryinginterpolateboundary 1/0/0 1\n\
              # a comment line\n\
              t facevaryingpropagatecorners 1/0/0 1\n\
              t vertexedit 3/2/2 1 2 3 0.5 1 value set\n\
@@ -742,7 +792,7 @@ mod tests {
         assert_eq!(
             m.tags.ignored,
             vec![
-                ("smoothtriangles".to_string(), tag_line(1)),
+                ("facevaryinginterpolateboundary".to_string(), tag_line(1)),
                 ("facevaryingpropagatecorners".to_string(), tag_line(3)),
                 ("vertexedit".to_string(), tag_line(4)),
                 ("somethingnew".to_string(), tag_line(5)),

@@ -31,6 +31,7 @@
 //! the same valence) and rule 3 always picks Catmull-Clark.
 
 use crate::adaptive::base::{plain_base, tagged_base, TaggedBase};
+use crate::adaptive::refine::Rules;
 use crate::adaptive::{self, AdaptiveOptions};
 use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
 use crate::chart::{Affine, FaceChart};
@@ -466,7 +467,10 @@ impl<'t> SurfacePlan<'t> {
             roots,
             AdaptiveOptions {
                 depth: self.options.depth,
-                chaikin: base.chaikin,
+                rules: Rules {
+                    chaikin: base.chaikin,
+                    smooth_triangles: base.smooth_triangles,
+                },
             },
             first,
         );

@@ -23,7 +23,7 @@ mod osd;
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
     samples, BoundaryInterpolation, CreaseMethod, EdgeCrease, Evaluator, MeshInput, PatchKind,
-    PatchRecord, PlanOptions, SurfacePlan, VertexCorner,
+    PatchRecord, PlanOptions, SurfacePlan, TriangleSubdivision, VertexCorner,
 };
 use common::Collect;
 use osd::{Answer, Job, Query};
@@ -478,6 +478,70 @@ fn triangles_and_ngons() {
         "triangulated grid: {} samples, worst {:e}",
         r.compared, r.worst
     );
+}
+
+/// An octahedron: every vertex a fan of four triangles.
+fn octahedron() -> MeshInput {
+    let vertices = vec![
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    let faces = vec![
+        vec![0, 2, 4],
+        vec![2, 1, 4],
+        vec![1, 3, 4],
+        vec![3, 0, 4],
+        vec![2, 0, 5],
+        vec![1, 2, 5],
+        vec![3, 1, 5],
+        vec![0, 3, 5],
+    ];
+    MeshInput::new(vertices, faces)
+}
+
+#[test]
+fn smooth_triangle_rule_next_to_triangles() {
+    // `TRI_SUB_SMOOTH` changes the edge points of edges with a triangle on
+    // one or both sides: open and closed meshes, triangles beside quads and
+    // pentagons, a closed all-triangle mesh, and a crease on a triangle.
+    let mut pentagon = samples::triangle_and_pentagon_mesh();
+    pentagon.tags.triangles = TriangleSubdivision::Smooth;
+    let mut grid = samples::grid(5, 5);
+    let f = grid.faces.remove(12);
+    grid.faces.push(vec![f[0], f[1], f[2]]);
+    grid.faces.push(vec![f[0], f[2], f[3]]);
+    grid.tags.triangles = TriangleSubdivision::Smooth;
+    let mut octa = octahedron();
+    octa.tags.triangles = TriangleSubdivision::Smooth;
+    let mut creased = octa.clone();
+    creased.tags.creases.push(crease(0, 2, 1.5));
+    for (name, m) in [
+        ("triangle and pentagon", &pentagon),
+        ("triangulated grid", &grid),
+        ("octahedron", &octa),
+        ("creased octahedron", &creased),
+    ] {
+        let r = compare(name, m, 4);
+        eprintln!(
+            "smooth triangles, {name}: {} samples, worst {:e}",
+            r.compared, r.worst
+        );
+    }
+    // The rule changes the surface: the octahedron's smooth and Catmark
+    // limit points differ (by much more than round-off).
+    let limit = |m: &MeshInput| {
+        let mut job = Job::new(m);
+        job.limits = vec![4];
+        osd::run(&job).1[0]
+    };
+    let mut catmark = octa.clone();
+    catmark.tags.triangles = TriangleSubdivision::Catmark;
+    let (a, b) = (limit(&octa), limit(&catmark));
+    assert!((a[2] - b[2]).abs() > 1e-3, "smooth {a:?} vs catmark {b:?}");
 }
 
 #[test]

@@ -520,6 +520,8 @@ pub struct TagSummary {
     pub boundary: &'static str,
     /// `normal` or `chaikin`.
     pub crease_method: &'static str,
+    /// `catmark` or `smooth`: the edge rule next to triangles.
+    pub triangles: &'static str,
     /// OBJ tags read but not applied, with their 1-based line.
     pub ignored: Vec<IgnoredTag>,
 }
@@ -542,6 +544,7 @@ impl TagSummary {
             holes: tags.holes.len(),
             boundary: tags.boundary.id(),
             crease_method: tags.crease_method.id(),
+            triangles: tags.triangles.id(),
             ignored: tags
                 .ignored
                 .iter()
@@ -561,13 +564,14 @@ impl TagSummary {
             .map(|t| format!("{} (line {})", t.name, t.line))
             .collect();
         format!(
-            "{} crease(s), {} corner(s), {} hole(s); boundary {}, creasing {}; scheme {}; \
-             ignored tags: {}",
+            "{} crease(s), {} corner(s), {} hole(s); boundary {}, creasing {}, triangles {}; \
+             scheme {}; ignored tags: {}",
             self.creases,
             self.corners,
             self.holes,
             self.boundary,
             self.crease_method,
+            self.triangles,
             scheme,
             if ignored.is_empty() {
                 "none".to_string()

@@ -6,7 +6,7 @@
 
 use super::crease::is_infinite;
 use super::level::Level;
-use crate::input::{BoundaryInterpolation, CreaseMethod, MeshInput};
+use crate::input::{BoundaryInterpolation, CreaseMethod, MeshInput, TriangleSubdivision};
 use crate::topology::Topology;
 use alloc::collections::BTreeMap;
 use alloc::vec;
@@ -23,6 +23,8 @@ pub struct TaggedBase {
     pub clean: Vec<bool>,
     /// Chaikin's creasing method.
     pub chaikin: bool,
+    /// The smooth-triangle edge rule.
+    pub smooth_triangles: bool,
     /// Crease tags whose two vertices share no edge (ignored).
     pub creases_not_edges: usize,
 }
@@ -83,11 +85,13 @@ pub fn tagged_base(mesh: &MeshInput) -> TaggedBase {
         boundary_faces_to_holes(&mut level);
     }
     level.sharpen_base(tags.boundary == BoundaryInterpolation::EdgeAndCorner);
-    let clean = clean_faces(&level, tags.boundary);
+    let smooth_triangles = tags.triangles == TriangleSubdivision::Smooth;
+    let clean = clean_faces(&level, tags.boundary, smooth_triangles);
     TaggedBase {
         level,
         clean,
         chaikin: tags.crease_method == CreaseMethod::Chaikin,
+        smooth_triangles,
         creases_not_edges: sharp.len() - edges_found,
     }
 }
@@ -109,6 +113,7 @@ pub fn plain_base(t: &Topology) -> TaggedBase {
         level,
         clean,
         chaikin: false,
+        smooth_triangles: false,
         creases_not_edges: 0,
     }
 }
@@ -147,8 +152,13 @@ fn boundary_faces_to_holes(level: &mut Level) {
 
 /// Faces whose corners see only OpenSubdiv's defaults: no sharp edge but
 /// boundary edges, no sharp vertex but corners of one face sharpened by the
-/// edge-and-corner rule, no hole.
-fn clean_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
+/// edge-and-corner rule, no hole, and (under the smooth-triangle rule) no
+/// triangle.
+fn clean_faces(
+    level: &Level,
+    boundary: BoundaryInterpolation,
+    smooth_triangles: bool,
+) -> Vec<bool> {
     let vertex_clean: Vec<bool> = (0..level.num_vertices())
         .map(|v| {
             let edges = level.vertex_edges(v);
@@ -159,7 +169,13 @@ fn clean_faces(level: &Level, boundary: BoundaryInterpolation) -> Vec<bool> {
             } else {
                 vs == 0.0
             };
+            let triangle_free = !smooth_triangles
+                || level
+                    .vertex_corners(v)
+                    .iter()
+                    .all(|&c| level.face(level.corner_face[c as usize] as usize).len() != 3);
             vertex_ok
+                && triangle_free
                 && edges.iter().all(|&e| {
                     let e = e as usize;
                     level.edge_sharpness[e] == 0.0

@@ -26,7 +26,7 @@ use alloc::vec;
 use alloc::vec::Vec;
 use level::Level;
 use points::{Key, Points};
-use refine::{limit_point, refine};
+use refine::{limit_point, refine, Rules};
 use regular::{corner_is_regular, regular_grid};
 
 /// "No point".
@@ -103,8 +103,8 @@ pub struct Adaptive {
 pub struct AdaptiveOptions {
     /// Rings around an irregular vertex (its last hole is `2^-depth` of its faces).
     pub depth: u32,
-    /// Chaikin's creasing method.
-    pub chaikin: bool,
+    /// The rules that are options.
+    pub rules: Rules,
 }
 
 /// Covers `roots` (faces of `base` with where they lie in the input).
@@ -214,7 +214,7 @@ fn visit(
     ring.sort_unstable();
     ring.dedup();
     let at = ring.iter().position(|&g| g as usize == f).unwrap_or(0);
-    let child = refine(m, &ring, options.chaikin, &mut out.points);
+    let child = refine(m, &ring, options.rules, &mut out.points);
     // A child may be a last hole only if this face has one irregular
     // corner: otherwise a sibling would border the holes of two vertices
     // (a triangle's sub-quad, whose corner and centre are both irregular).

@@ -73,8 +73,18 @@ pub struct Child {
     pub first: Vec<u32>,
 }
 
+/// The rules of OpenSubdiv's `Sdc::Options` that change the masks.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Rules {
+    /// `CREASE_CHAIKIN` (else `CREASE_UNIFORM`).
+    pub chaikin: bool,
+    /// `TRI_SUB_SMOOTH` (else `TRI_SUB_CATMARK`).
+    pub smooth_triangles: bool,
+}
+
 /// Refines `faces` of `m` (see the module doc for what `m` must hold).
-pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> Child {
+pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Child {
+    let chaikin = rules.chaikin;
     // Children by parent index: maps, not arrays, as the parent may be the
     // whole base mesh while the faces refined are a handful.
     let mut vchild: HashMap<usize, u32> = HashMap::new();
@@ -111,7 +121,7 @@ pub fn refine(m: &Level, faces: &[u32], chaikin: bool, points: &mut Points) -> C
             if echild.contains_key(&e) {
                 continue;
             }
-            let p = edge_point(m, e, chaikin, points);
+            let p = edge_point(m, e, rules, points);
             let mid = new_vertex(p, 0.0, &mut point, &mut vsharp);
             echild.insert(e, mid);
             let s = m.edge_sharpness[e];
@@ -161,7 +171,8 @@ pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
 }
 
 /// The edge point of `e`.
-pub fn edge_point(m: &Level, e: usize, chaikin: bool, points: &mut Points) -> u32 {
+pub fn edge_point(m: &Level, e: usize, rules: Rules, points: &mut Points) -> u32 {
+    let chaikin = rules.chaikin;
     let [a, b] = m.edge_vertices[e];
     let (pa, pb) = (m.point[a as usize], m.point[b as usize]);
     let key = Key::Edge(pa.min(pb), pa.max(pb));
@@ -174,11 +185,25 @@ pub fn edge_point(m: &Level, e: usize, chaikin: bool, points: &mut Points) -> u3
             r
         };
         let smooth = || {
+            let corners = m.edge_corners(e);
+            let triangle = |c: u32| m.face(m.corner_face[c as usize] as usize).len() == 3;
+            let (wv, wf) = if rules.smooth_triangles
+                && corners.len() == 2
+                && corners.iter().any(|&c| triangle(c))
+            {
+                // `assignSmoothMaskForEdge` with `TRI_SUB_SMOOTH`, in its
+                // order of operations.
+                let fw = |c: u32| if triangle(c) { 0.470 } else { 0.25 };
+                let wf = 0.5 * (fw(corners[0]) + fw(corners[1]));
+                (0.5 * (1.0 - 2.0 * wf), wf)
+            } else {
+                (0.25, 0.25)
+            };
             let mut r = Row::new();
-            r.add(pa, 0.25);
-            r.add(pb, 0.25);
-            for &c in m.edge_corners(e) {
-                add_centroid(m, m.corner_face[c as usize] as usize, 0.25, &mut r);
+            r.add(pa, wv);
+            r.add(pb, wv);
+            for &c in corners {
+                add_centroid(m, m.corner_face[c as usize] as usize, wf, &mut r);
             }
             r
         };

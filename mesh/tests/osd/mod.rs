@@ -215,6 +215,7 @@ pub fn job_text(job: &Job) -> String {
     };
     writeln!(t, "boundary {boundary}").unwrap();
     writeln!(t, "creasing {creasing}").unwrap();
+    writeln!(t, "triangles {}", tags.triangles.id()).unwrap();
     writeln!(t, "isolation {}", job.isolation).unwrap();
     writeln!(t, "queries {}", job.queries.len()).unwrap();
     for q in &job.queries {

@@ -1,6 +1,6 @@
 // OpenSubdiv 3.5 as an oracle for capdiv-mesh's tests: the Catmull-Clark
 // limit surface of a tagged mesh (creases, corners, holes, boundary rule,
-// creasing method) at given ptex points, and the limit positions of given
+// creasing method, triangle rule) at given ptex points, and the limit positions of given
 // input vertices. The job comes on stdin, the answers go to stdout (format in
 // mesh/tests/osd/mod.rs); anything OpenSubdiv reports goes to stderr, and any
 // error exits non-zero.
@@ -173,6 +173,13 @@ int main() {
         sdcOptions.SetCreasingMethod(Sdc::Options::CREASE_CHAIKIN);
     else
         fail("unknown creasing method '%s'", creasing.c_str());
+    std::string triangles = keyword("triangles");
+    if (triangles == "catmark")
+        sdcOptions.SetTriangleSubdivision(Sdc::Options::TRI_SUB_CATMARK);
+    else if (triangles == "smooth")
+        sdcOptions.SetTriangleSubdivision(Sdc::Options::TRI_SUB_SMOOTH);
+    else
+        fail("unknown triangle rule '%s'", triangles.c_str());
 
     std::string isolationText = keyword("isolation");
     int isolation = std::atoi(isolationText.c_str());
