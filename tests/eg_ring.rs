@@ -223,14 +223,15 @@ fn valence4_rings_are_the_bicubic_cap() {
     let cap = c.regular_cap().unwrap();
     let mut sub = EgSubdivision::from_cnet(&c).unwrap();
     let mut worst = 0.0f64;
-    // Under Miri one ring.
+    // Under Miri one ring, sampled at the patches' corners and centre.
+    let samples: &[usize] = if cfg!(miri) { &[0, 2, 4] } else { &[0, 1, 2, 3, 4] };
     for m in 0..if cfg!(miri) { 1 } else { 4 } {
         sub.step().unwrap();
         let w = 0.5f64.powi(m) / 2.0;
         for (k, p) in sub.ring_patches().enumerate() {
             let (x0, y0) = [(w, 0.0), (0.0, w), (w, w)][k % 3];
-            for a in 0..=4 {
-                for b in 0..=4 {
+            for &a in samples {
+                for &b in samples {
                     let (x, y) = (x0 + w * a as f64 / 4.0, y0 + w * b as f64 / 4.0);
                     let eg = patch_jet(&p, x0, y0, w, x, y);
                     let bi = patch_jet(&cap[k / 3], 0.0, 0.0, 1.0, x, y);
