@@ -25,7 +25,7 @@ if ! command -v g++ >/dev/null; then
 fi
 cargo test --workspace --release
 cargo test -p capdiv --release --features micromath --test micromath
-for check in embedded stream cfirmware viewer fuzz miri; do
+for check in embedded stream cfirmware viewer exchange fuzz miri; do
   t0=$(date +%s)
   # Miri: each of its two parallel groups gets 25 minutes (about 8 measured
   # on an idle 2-core machine); a hang still fails.

@@ -290,6 +290,21 @@ pub enum PatchFormat {
     Png,
 }
 
+/// `capdiv surface` output format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SurfaceFormat {
+    /// `{"patches", "caps", "summary"}`.
+    Json,
+    /// The welded tessellation as Wavefront OBJ.
+    Obj,
+    /// A shaded PNG preview of that mesh (binary: use with `-o`).
+    Png,
+    /// The welded tessellation as binary glTF 2.0 (use with `-o`).
+    Glb,
+    /// The welded tessellation as glTF 2.0 JSON, buffer embedded (base64).
+    Gltf,
+}
+
 /// Where the input comes from and where the output goes.
 #[derive(Clone, Debug, Args)]
 pub struct Io {
@@ -387,10 +402,11 @@ pub struct SurfaceArgs {
     #[arg(long, default_value_t = 6, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=16))]
     pub depth: u32,
-    /// Output format: JSON patches, caps and summary; a welded OBJ; a PNG.
-    #[arg(long, value_enum, default_value_t = PatchFormat::Json)]
-    pub format: PatchFormat,
-    /// OBJ and PNG: grid segments per patch side.
+    /// Output format: JSON patches, caps and summary; a welded OBJ; a PNG;
+    /// glTF 2.0 (binary `glb`, or `gltf` with the buffer embedded).
+    #[arg(long, value_enum, default_value_t = SurfaceFormat::Json)]
+    pub format: SurfaceFormat,
+    /// OBJ, PNG, glb and gltf: grid segments per patch side.
     #[arg(long, default_value_t = 4, value_name = "G",
           value_parser = clap::value_parser!(u32).range(1..=64))]
     pub grid: u32,

@@ -15,6 +15,7 @@
 //!   (stdout, or a file written through a temporary file and a rename);
 //! - [`mesh`]: tessellation of Bézier patches into a quad mesh;
 //! - [`obj`]: the mesh as Wavefront OBJ text;
+//! - [`export`]: exchange formats of a whole surface (glTF 2.0, STEP);
 //! - [`render`]: the mesh as a shaded PNG preview;
 //! - [`picture`]: shapes shaded per pixel from the exact patches (highlight
 //!   lines, curvature maps with legends), one panel per scheme;
@@ -27,6 +28,7 @@ pub mod args;
 pub mod capacity;
 pub mod commands;
 pub mod error;
+pub mod export;
 pub mod input;
 pub mod mesh;
 pub mod obj;

@@ -5,10 +5,11 @@
 //! `r g b` some tools append — must be numbers and are ignored),
 //! `f a b c …` with corners written `i`, `i/t`, `i//n` or `i/t/n`, 1-based or
 //! negative (relative to the vertices read so far, `-1` being the last), any
-//! polygon size, and tag lines (below). Lines may end in `\r\n`; `#` starts a
-//! comment; a line ending in `\` continues on the next one. Every other
-//! statement (`vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`,
-//! …) is ignored.
+//! polygon size, `o NAME` (the object the following faces belong to, kept
+//! by [`parse_obj_objects`] only), and tag lines (below). Lines may end in
+//! `\r\n`; `#` starts a comment; a line ending in `\` continues on the next
+//! one. Every other statement (`vt`, `vn`, `vp`, `g`, `s`, `usemtl`,
+//! `mtllib`, `l`, `p`, …) is ignored.
 //!
 //! Tags are OpenSubdiv's shape-file lines `t NAME nint/nfloat/nstring`
 //! followed by that many integers, then numbers, then strings, as its
@@ -75,6 +76,23 @@ fn strip_bom(text: &str) -> &str {
 /// face indices become 0-based. See the module doc for what is read, ignored
 /// and checked.
 pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
+    parse_obj_objects(text).map(|(mesh, _)| mesh)
+}
+
+/// A named object of an OBJ file: the faces from one `o NAME` statement to
+/// the next (or to the end).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ObjObject {
+    /// The name after `o` (the rest of the line, blanks trimmed; may be empty).
+    pub name: String,
+    /// Its faces, as indices into [`MeshInput::faces`].
+    pub faces: core::ops::Range<usize>,
+}
+
+/// [`parse_obj`], and the file's objects in order: empty if the file has no
+/// `o` statement. Faces before the first `o` form an object named `""`;
+/// objects without faces are left out.
+pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), MeshError> {
     let mut reader = Reader::default();
     let mut joined = String::new();
     let mut statement_line = 0usize;
@@ -120,7 +138,26 @@ pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
         face_ends,
         mut tags,
         pending,
+        objects: starts,
     } = reader;
+    let mut objects = Vec::new();
+    if !starts.is_empty() {
+        let mut bounds: Vec<(String, usize)> = Vec::with_capacity(starts.len() + 1);
+        if starts[0].1 > 0 {
+            bounds.push((String::new(), 0));
+        }
+        bounds.extend(starts);
+        for k in 0..bounds.len() {
+            let end = bounds.get(k + 1).map_or(face_ends.len(), |b| b.1);
+            let (name, start) = &bounds[k];
+            if end > *start {
+                objects.push(ObjObject {
+                    name: name.clone(),
+                    faces: *start..end,
+                });
+            }
+        }
+    }
     let nv = vertices.len();
     let mut faces: Vec<Vec<u32>> = Vec::with_capacity(face_ends.len());
     let mut start = 0usize;
@@ -170,11 +207,14 @@ pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
             }
         }
     }
-    Ok(MeshInput {
-        vertices,
-        faces,
-        tags,
-    })
+    Ok((
+        MeshInput {
+            vertices,
+            faces,
+            tags,
+        },
+        objects,
+    ))
 }
 
 /// What has been read so far.
@@ -188,6 +228,8 @@ struct Reader {
     /// creases, corners and holes are filled in at the end from `pending`.
     tags: SubdivTags,
     pending: Vec<PendingTag>,
+    /// `o` statements: name and the number of faces read before it.
+    objects: Vec<(String, usize)>,
 }
 
 /// A `crease`, `corner` or `hole` tag whose indices are checked at the end.
@@ -268,6 +310,11 @@ impl Reader {
                 self.face_ends.push(self.corners.len());
             }
             "t" => self.tag(tokens, line_no).map_err(error)?,
+            "o" => {
+                let name = line.trim_start()[1..].trim();
+                self.objects
+                    .push((String::from(name), self.face_ends.len()));
+            }
             _ => {}
         }
         Ok(())
@@ -486,6 +533,22 @@ mod tests {
     use super::*;
     use alloc::string::ToString;
     use alloc::vec;
+
+    #[test]
+    fn objects_are_the_face_ranges_between_o_statements() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no  first one \nf 1 2 3\nf 3 2 1\n\
+                    o empty\no last\ng ignored\nf 1 3 2\n";
+        let (mesh, objects) = parse_obj_objects(text).unwrap();
+        assert_eq!(mesh.faces.len(), 4);
+        let got: Vec<(&str, core::ops::Range<usize>)> = objects
+            .iter()
+            .map(|o| (o.name.as_str(), o.faces.clone()))
+            .collect();
+        assert_eq!(got, vec![("", 0..1), ("first one", 1..3), ("last", 3..4)]);
+        // No `o` statement: no objects.
+        let (_, none) = parse_obj_objects("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert!(none.is_empty());
+    }
 
     fn parse_err(text: &str) -> MeshError {
         parse_obj(text).unwrap_err()

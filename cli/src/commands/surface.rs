@@ -16,21 +16,24 @@
 //!   tolerance relative to the input's bounding box ([`weld_tolerance`]), with
 //!   normals; a closed, consistently oriented input gives a closed,
 //!   consistently oriented OBJ (checked, and reported);
-//! - `png`: a shaded preview of that tessellation (colours by level).
+//! - `png`: a shaded preview of that tessellation (colours by level);
+//! - `glb`, `gltf`: that tessellation as glTF 2.0, a node per OBJ object
+//!   ([`crate::export::gltf`]).
 //!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
 
 use super::Outcome;
-use crate::args::{PatchFormat, Precision, SurfaceArgs, SurfaceScheme};
+use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme};
 use crate::error::CliError;
+use crate::export::gltf;
 use crate::input::{parse, Input, Source};
 use crate::mesh::Mesh;
 use crate::output::{to_json, Sink};
 use crate::table::Table;
 use crate::Scalar;
 use capdiv::Point3;
-use capdiv_mesh::obj::{looks_like_json, parse_obj};
+use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
     TessPatch, Tessellation,
@@ -56,14 +59,15 @@ pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
 pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
     let tables = read_tables(&args.eg_table)?;
     let source = Source::read_text(&args.file)?;
-    let mut mesh = read_mesh(&source)?;
+    let (mut mesh, objects) = read_mesh_objects(&source)?;
     if let Some(b) = args.boundary {
         mesh.tags.boundary = b.into();
     }
     let name = source.name.as_str();
+    let input = (&mesh, objects.as_slice());
     let (bytes, report) = match args.precision {
-        Precision::F64 => produce::<f64>(name, &mesh, &tables, args, "f64", WELD_F64)?,
-        Precision::F32 => produce::<f32>(name, &mesh, &tables, args, "f32", WELD_F32)?,
+        Precision::F64 => produce::<f64>(name, input, &tables, args, "f64", WELD_F64)?,
+        Precision::F32 => produce::<f32>(name, input, &tables, args, "f32", WELD_F32)?,
     };
     let mut out = Outcome::new(bytes, Sink::from_option(args.output.clone()));
     if !args.quiet {
@@ -108,13 +112,19 @@ pub fn read_tables(specs: &[String]) -> Result<Vec<Table>, CliError> {
 /// The mesh of a source: JSON (`kind: "mesh"`) when it looks like JSON, OBJ
 /// otherwise.
 pub fn read_mesh(source: &Source) -> Result<MeshInput, CliError> {
+    read_mesh_objects(source).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh`] and the OBJ's named objects ([`parse_obj_objects`]; none
+/// for JSON).
+pub fn read_mesh_objects(source: &Source) -> Result<(MeshInput, Vec<ObjObject>), CliError> {
     let mesh_err = |error| CliError::Mesh {
         source: source.name.clone(),
         error,
     };
     if looks_like_json(&source.text) {
         match parse(&source.name, &source.text)? {
-            Input::Mesh(m) => m.to_mesh(&source.name),
+            Input::Mesh(m) => m.to_mesh(&source.name).map(|m| (m, Vec::new())),
             other => Err(CliError::WrongKind {
                 source: source.name.clone(),
                 kind: other.kind(),
@@ -122,13 +132,13 @@ pub fn read_mesh(source: &Source) -> Result<MeshInput, CliError> {
             }),
         }
     } else {
-        parse_obj(&source.text).map_err(mesh_err)
+        parse_obj_objects(&source.text).map_err(mesh_err)
     }
 }
 
 fn produce<R: Scalar>(
     name: &str,
-    mesh: &MeshInput,
+    (mesh, objects): (&MeshInput, &[ObjObject]),
     tables: &[Table],
     args: &SurfaceArgs,
     precision: &str,
@@ -138,7 +148,7 @@ fn produce<R: Scalar>(
     let surface = build_scheme::<R>(name, mesh, args.depth, tables, precision, cc)?;
     let grid = args.grid as usize;
     Ok(match args.format {
-        PatchFormat::Json => {
+        SurfaceFormat::Json => {
             let out = SurfaceJson {
                 patches: surface.patches.iter().map(PatchJson::new).collect(),
                 caps: surface.caps.iter().map(CapJson::new).collect(),
@@ -147,7 +157,7 @@ fn produce<R: Scalar>(
             let report = report(name, &surface.summary, None);
             (to_json(&out, args.pretty), report)
         }
-        PatchFormat::Obj | PatchFormat::Png => {
+        SurfaceFormat::Obj | SurfaceFormat::Png | SurfaceFormat::Glb | SurfaceFormat::Gltf => {
             // f32 output is welded where the f64 surface welds (see
             // `tessellate_surface`); f64 output needs no guide.
             let guide = if precision == "f32" {
@@ -157,16 +167,37 @@ fn produce<R: Scalar>(
             } else {
                 None
             };
-            let tess = tessellate_surface(&surface, mesh, grid, weld, guide.as_ref());
-            let report = report(name, &surface.summary, Some(&tess.info));
-            let bytes = if args.format == PatchFormat::Obj {
-                let title = format!(
-                    "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
-                    args.depth
-                );
-                obj_text(&tess, &surface.summary, &title).into_bytes()
-            } else {
-                super::patches::png_bytes(&render_mesh(&tess.mesh))?
+            // glTF groups faces by input face (its objects); the others colour
+            // them by level.
+            let tag = match args.format {
+                SurfaceFormat::Glb | SurfaceFormat::Gltf => |p: &PatchRecord<_>| p.face,
+                _ => |p: &PatchRecord<_>| p.level,
+            };
+            let tess = tessellate_surface_tagged(&surface, mesh, grid, weld, guide.as_ref(), tag);
+            let mut report = report(name, &surface.summary, Some(&tess.info));
+            let bytes = match args.format {
+                SurfaceFormat::Obj => {
+                    let title = format!(
+                        "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
+                        args.depth
+                    );
+                    obj_text(&tess, &surface.summary, &title).into_bytes()
+                }
+                SurfaceFormat::Png => super::patches::png_bytes(&render_mesh(&tess.mesh))?,
+                _ => {
+                    let groups = gltf::groups(&tess.mesh.tags, objects);
+                    let doc = gltf::document(&tess.mesh, &groups);
+                    let _ = writeln!(
+                        report,
+                        "  gltf         {} node(s), {} vertices, {} triangles",
+                        doc.nodes, doc.vertices, doc.triangles
+                    );
+                    if args.format == SurfaceFormat::Glb {
+                        gltf::glb(&doc)
+                    } else {
+                        gltf::gltf_text(&doc)
+                    }
+                }
             };
             (bytes, report)
         }
@@ -702,29 +733,45 @@ pub fn tessellate_surface<R: Scalar>(
     factor: f64,
     guide: Option<&Surface<f64>>,
 ) -> Tess<R> {
+    tessellate_surface_tagged(surface, mesh, grid, factor, guide, |p| p.level)
+}
+
+/// [`tessellate_surface`] with each face tagged `tag(its patch)` (there: the
+/// patch's level).
+pub fn tessellate_surface_tagged<R: Scalar>(
+    surface: &Surface<R>,
+    mesh: &MeshInput,
+    grid: usize,
+    factor: f64,
+    guide: Option<&Surface<f64>>,
+    tag: fn(&PatchRecord<R>) -> u32,
+) -> Tess<R> {
     let start = Instant::now();
     let (tolerance, size) = weld_tolerance(mesh, factor);
-    fn tess_patches<S: Copy>(s: &Surface<S>) -> impl Iterator<Item = TessPatch<S>> + '_ {
-        s.patches.iter().map(|p| TessPatch {
+    fn tess_patches<S: Copy>(
+        s: &Surface<S>,
+        tag: fn(&PatchRecord<S>) -> u32,
+    ) -> impl Iterator<Item = TessPatch<S>> + '_ {
+        s.patches.iter().map(move |p| TessPatch {
             geometry: p.geometry,
             finer: p.finer,
             hole: p.hole,
             hole_point: p.hole_point,
-            tag: p.level,
+            tag: tag(p),
         })
     }
     let t = match guide {
         Some(g) => {
             let (guide_tolerance, _) = weld_tolerance(mesh, WELD_F64);
             tessellate_guided(
-                tess_patches(surface),
-                tess_patches(g),
+                tess_patches(surface, tag),
+                tess_patches(g, |p| p.level),
                 grid,
                 guide_tolerance,
                 R::from_f64(tolerance),
             )
         }
-        None => tessellate(tess_patches(surface), grid, R::from_f64(tolerance)),
+        None => tessellate(tess_patches(surface, tag), grid, R::from_f64(tolerance)),
     };
     // Report the tolerance that decided the welding.
     let (tolerance, factor) = match guide {
