@@ -65,7 +65,7 @@ pub enum Error {
     /// A user-supplied EG rule table has rows whose weights do not sum correctly.
     TableRowSum,
     /// A user-supplied EG rule table's subdominant eigenvalue is not within
-    /// 10⁻³ of Catmull-Clark's (spec EG.md §8).
+    /// 10⁻³ of Catmull-Clark's (docs/math/eg.md §8).
     TableSpectrum,
 }
 

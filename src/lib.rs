@@ -2,9 +2,9 @@
 //!
 //! A `no_std`, allocation-free kernel for smooth subdivision-surface caps:
 //!
-//! - [`polar`]: C²PS, bi-3 C² polar subdivision (spec `C2PS.md`) — caps around
+//! - [`polar`]: C²PS, bi-3 C² polar subdivision (`docs/math/c2ps.md`) — caps around
 //!   polar vertices; the valence doubles every step.
-//! - [`eg`]: Evolving Guide subdivision (spec `EG.md`) — bi-4 caps around
+//! - [`eg`]: Evolving Guide subdivision (`docs/math/eg.md`) — bi-4 caps around
 //!   extraordinary Catmull-Clark nodes.
 //! - [`cc`]: Catmull-Clark caps in caller-provided storage — the baseline EG
 //!   is compared with, for any valence ≥ 3.

@@ -1,4 +1,4 @@
-//! [`FourierRule`]: an EG step (spec EG.md §5, §6) with rule (7) factored
+//! [`FourierRule`]: an EG step (docs/math/eg.md §5, §6) with rule (7) factored
 //! through the discrete Fourier transform over the sectors — the same linear
 //! map as the dense sum of [`super::refine`], in about half the operations.
 //!

@@ -1,4 +1,4 @@
-//! `PolarNetBuf`: a polar configuration (spec C2PS.md §1) in caller-provided
+//! `PolarNetBuf`: a polar configuration (docs/math/c2ps.md §1) in caller-provided
 //! storage — [`PolarNet`]'s operations, results and errors with a capacity
 //! chosen at run time.
 //!

@@ -1,4 +1,4 @@
-//! One RTS step (spec C2PS.md §3): the C²PS rules with the valence kept, no
+//! One RTS step (docs/math/c2ps.md §3): the C²PS rules with the valence kept, no
 //! periodic refinement (`q̃ = q`) and `τ = j/n`. In place, O(n).
 
 use super::fourier::Fourier;

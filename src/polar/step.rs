@@ -1,4 +1,4 @@
-//! One C²PS step, level m → m+1, valence n → 2n (spec C2PS.md §2), in place.
+//! One C²PS step, level m → m+1, valence n → 2n (docs/math/c2ps.md §2), in place.
 //!
 //! O(n): the Fourier sums of the old 1-link are taken once, then every new
 //! point is a fixed combination of them and of the periodic refinements of old

@@ -1,5 +1,5 @@
 //! [`UnitRoots`]: how each scalar type derives the roots of unity the C²PS
-//! rules need (spec C2PS.md §2, §4: `c(j/N)`, `s(j/N)`).
+//! rules need (docs/math/c2ps.md §2, §4: `c(j/N)`, `s(j/N)`).
 //!
 //! - `f64`: from the compile-time table [`super::ODD_ROOTS`] by a product
 //!   chain (base ring) and half-angle steps ([`super::primitive_root`]), all
