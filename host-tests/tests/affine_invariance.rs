@@ -1,7 +1,7 @@
 //! Affine invariance of both schemes: refining the image of a configuration
 //! under `x ↦ M x + t` gives the image of the refined configuration, for the
 //! kernel's C²PS (either first step) and RTS steps. Every rule's weights sum
-//! to 1 (spec §2, §3), so this must hold to round-off.
+//! to 1 (docs/math/c2ps.md §2, §3), so this must hold to round-off.
 //!
 //! Tolerance: 1e-11 · S with S = max(|image coordinates|, ‖M‖∞ · size):
 //! a few levels of round-off at ≤ 1e-15 S each, with margin for the sums of
