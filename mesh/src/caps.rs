@@ -1,5 +1,5 @@
 //! Finding the caps' configurations in a mesh: polar configurations (spec
-//! C2PS.md §1) and the c-nets of extraordinary points (spec EG.md §1).
+//! docs/math/c2ps.md §1) and the c-nets of extraordinary points (docs/math/eg.md §1).
 
 use crate::grid::{corner_grid, Combo};
 use crate::topology::{Topology, NONE};
@@ -218,7 +218,7 @@ pub fn polar_config(
     })
 }
 
-/// The c-net of an extraordinary point (spec EG.md §1) found in the mesh.
+/// The c-net of an extraordinary point (docs/math/eg.md §1) found in the mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EvConfig {
     /// The center `e`.

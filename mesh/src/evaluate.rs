@@ -93,7 +93,7 @@ pub struct CapRecord<R> {
     /// last ring; Catmull-Clark: the limit tangents), if not degenerate.
     pub normal: Option<Point3<R>>,
     /// Principal curvatures at the limit point: C²PS only (exact, spec
-    /// C2PS.md §4); EG and Catmull-Clark caps report none.
+    /// docs/math/c2ps.md §4); EG and Catmull-Clark caps report none.
     pub principal_curvatures: Option<[R; 2]>,
 }
 
