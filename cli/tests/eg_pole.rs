@@ -1,4 +1,4 @@
-//! `capdiv pole` on EG inputs: `{"limit"}` = `c0` (spec EG.md §4), against
+//! `capdiv pole` on EG inputs: `{"limit"}` = `c0` (docs/math/eg.md §4), against
 //! formulas (3) and (4) computed here from the spec, independently of the
 //! kernel; the limit is the same at every level.
 
@@ -14,7 +14,7 @@ fn limit_of(args: &[&str], stdin: Option<&[u8]>) -> [f64; 3] {
     p3(&out["limit"])
 }
 
-/// Formula (3) of spec §4.
+/// Formula (3) of docs/math/eg.md §4.
 fn formula_3(center: [f64; 3], sectors: &[[[f64; 3]; 6]]) -> [f64; 3] {
     let n = sectors.len() as f64;
     let (we, w6, w5) = if sectors.len() == 3 {
@@ -32,7 +32,7 @@ fn formula_3(center: [f64; 3], sectors: &[[[f64; 3]; 6]]) -> [f64; 3] {
     c
 }
 
-/// Formula (4) of spec §4 (with the spec's corrected e32).
+/// Formula (4) of docs/math/eg.md §4 (with the corrected e32).
 fn formula_4(sectors: &[[[f64; 3]; 12]]) -> [f64; 3] {
     let n = sectors.len();
     let nf = n as f64;

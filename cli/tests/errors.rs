@@ -309,7 +309,7 @@ fn spectrum_and_table_errors() {
         true,
     );
     fails(&["spectrum"], None, "--valence", false);
-    // The kernel's checks of a user table, each named (spec §6-§8).
+    // The kernel's checks of a user table, each named (docs/math/eg.md §6–§8).
     let cases: Vec<(std::path::PathBuf, &str)> = vec![
         (
             table_file(d, "rows.json", |t| {
