@@ -172,7 +172,7 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     }
 }
 
-/// EG steps the firmware applies to each sample (spec EG.md: n = 3, 5).
+/// EG steps the firmware applies to each sample (docs/math/eg.md: n = 3, 5).
 const EG_STEPS: u32 = 4;
 
 /// The C²PS numbers of `firmware/src/c2ps.rs` from the independent reference
