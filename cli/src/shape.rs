@@ -223,7 +223,7 @@ impl NetJob<f64> for PolarJob<'_> {
             }
             if level < self.depth {
                 if self.rts {
-                    net.try_rts_step().map_err(kernel)?;
+                    net.rts_step().map_err(kernel)?;
                 } else {
                     net.step(FirstStep::Uniform).map_err(kernel)?;
                 }

@@ -60,7 +60,7 @@ fn kernel_f64(
     let mut net: PolarNet<f64, 2048> = PolarNet::new(pole, links).unwrap();
     for _ in 0..m {
         if rts {
-            net.rts_step();
+            net.rts_step().unwrap();
         } else {
             net.step(first).unwrap();
         }

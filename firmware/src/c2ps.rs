@@ -145,7 +145,7 @@ fn rts() -> Result<(), Failure> {
     }
     let mut net = PolarNet::<f32, VALENCE>::from_flat(pole(), VALENCE, &flat)?;
     for k in 1..=3 {
-        net.rts_step();
+        net.rts_step()?;
         point("rtspole", &[k], net.pole());
     }
     for (j, p) in net.link(1).unwrap_or(&[]).iter().enumerate() {

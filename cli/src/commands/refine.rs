@@ -173,7 +173,7 @@ impl<R: Scalar> NetJob<R> for Job<'_, R> {
             match self.scheme {
                 Scheme::C2ps => net.step(self.first).map_err(kernel)?,
                 // Eg is refused by `refine` before the job starts.
-                Scheme::Rts | Scheme::Eg => net.rts_step(),
+                Scheme::Rts | Scheme::Eg => net.rts_step().map_err(kernel)?,
             }
         }
         Ok(PolarOutput::of(&net))
