@@ -107,6 +107,7 @@ pub trait SurfaceSink<R> {
 
 /// Why an evaluation failed.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum EvalError {
     /// `positions` does not have one entry per input vertex.
     WrongLength {
@@ -170,6 +171,10 @@ impl core::fmt::Display for EvalError {
         }
     }
 }
+
+/// The message names the kernel's error of a [`EvalError::Kernel`] itself,
+/// so no error is reported again as a source.
+impl core::error::Error for EvalError {}
 
 /// The largest valence a polar cap may reach at its deepest level (its net
 /// then takes `17·2^20·size_of::<R>()` bytes: 142 MB in f64).
