@@ -563,8 +563,7 @@ fn rts_step_reports_an_overflowing_net_like_step() {
         ([0.0, 0.0, -0.25 * scale], links)
     };
     let state = |net: &PolarNet<f32, 64>| {
-        let links: Vec<Vec<Point3<f32>>> =
-            (1..=5).map(|i| net.link(i).unwrap().to_vec()).collect();
+        let links: Vec<Vec<Point3<f32>>> = (1..=5).map(|i| net.link(i).unwrap().to_vec()).collect();
         (net.pole(), net.valence(), net.links_held(), links)
     };
 
