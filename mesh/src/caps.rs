@@ -71,9 +71,9 @@ pub struct PolarConfig {
     pub links: [Vec<u32>; 2],
     /// Link 3 as combinations (phantoms at a boundary), empty if unknown.
     pub link3: Vec<Combo>,
-    /// `triangles[j]` = face (pole, link1[j], link1[j+1]).
+    /// `triangles[j]` = face `(pole, link1[j], link1[j+1])`.
     pub triangles: Vec<u32>,
-    /// `quads[j]` = face (link1[j+1], link1[j], link2[j], link2[j+1]).
+    /// `quads[j]` = face `(link1[j+1], link1[j], link2[j], link2[j+1])`.
     pub quads: Vec<u32>,
     /// Corner of `quads[j]` at which `links[0][j]` sits.
     pub quad_corner: Vec<u8>,

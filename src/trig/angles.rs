@@ -5,7 +5,7 @@
 //!   chain (base ring) and half-angle steps ([`super::primitive_root`]), all
 //!   in `f64`.
 //! - `f32`: from the angle `2π/n` in double-single arithmetic
-//!   ([`super::double_single`], ~48 bits) by Taylor series, with `f32`
+//!   (`double_single`, ~48 bits) by Taylor series, with `f32`
 //!   operations only — no soft-float `f64` on an FPU-less or single-precision
 //!   chip — then rounded to `f32`. Over every supported odd part and 30
 //!   doublings the rounded values equal the `f64` route's rounded to `f32`,
