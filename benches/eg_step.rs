@@ -1,4 +1,4 @@
-//! EG (spec EG.md §5–§9): time of one step and of emitting one ring of 3n
+//! EG (docs/math/eg.md §5–§9): time of one step and of emitting one ring of 3n
 //! bi-4 patches, per valence, f64 and f32. Valences 3 and 5 use the built-in
 //! §7 tables, 4 the regular rules. `scripts/bench-table.py` makes the table.
 

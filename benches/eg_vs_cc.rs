@@ -1,7 +1,7 @@
 //! EG against Catmull-Clark on the same c-net, in one run ("switching
 //! a cap from Catmull-Clark to EG at most doubles its cost", EG paper §8).
 //!
-//! For n = 3 and 5, f64 and f32, on one c-net (spec EG.md §1: center and 6
+//! For n = 3 and 5, f64 and f32, on one c-net (docs/math/eg.md §1: center and 6
 //! nodes per sector, i.e. 4n quads):
 //! - `eg_step`: one [`EgSubdivision::step`] (built-in §7 table, dense
 //!   rule (7): the small-firmware path);

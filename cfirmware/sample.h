@@ -1,7 +1,7 @@
 /*
  * The sample nets of the Rust firmware (firmware/src/sample.rs), as C
  * arrays: a level-0 polar configuration of valence 6 with 7 links (spec
- * C2PS.md §1) and EG c-nets of valence 3 and 5 (spec EG.md §1). Every
+ * docs/math/c2ps.md §1) and EG c-nets of valence 3 and 5 (docs/math/eg.md §1). Every
  * coordinate is a multiple of 2^-10 below 2^4: exact in float and double.
  * The host test (embedded-tests/tests/c_firmware_qemu.rs) checks that the
  * firmware's printed inputs are these numbers.

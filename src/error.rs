@@ -6,6 +6,7 @@
 /// Everything that can go wrong, one variant per cause.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Error {
     /// A valence below the scheme's minimum (C²PS: 3; EG: 3).
     ValenceTooSmall {
@@ -65,7 +66,7 @@ pub enum Error {
     /// A user-supplied EG rule table has rows whose weights do not sum correctly.
     TableRowSum,
     /// A user-supplied EG rule table's subdominant eigenvalue is not within
-    /// 10⁻³ of Catmull-Clark's (spec EG.md §8).
+    /// 10⁻³ of Catmull-Clark's (docs/math/eg.md §8).
     TableSpectrum,
 }
 
@@ -108,3 +109,6 @@ impl core::fmt::Display for Error {
         }
     }
 }
+
+/// Every variant is a cause of its own: no underlying error.
+impl core::error::Error for Error {}

@@ -205,7 +205,7 @@ fn rings_and_sectors_join_c2() {
     assert!(worst < 1e-10, "{worst:e}");
 }
 
-/// Catmull-Clark's subdominant eigenvalue (spec EG.md §8).
+/// Catmull-Clark's subdominant eigenvalue (docs/math/eg.md §8).
 fn lambda_cc(n: usize) -> f64 {
     let t = std::f64::consts::PI / n as f64;
     let c2 = (2.0 * t).cos();

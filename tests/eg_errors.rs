@@ -240,7 +240,7 @@ fn user_table_shape() {
     let mut t = good.clone();
     t[2][4][0] = 100_000;
     assert_eq!(check(5, &t), Err(Error::TableShape));
-    // The paper's appendix keeps one row per array for n = 6 (spec §7).
+    // The paper's appendix keeps one row per array for n = 6 (docs/math/eg.md §7).
     let one: Rows = vec![[
         195, -490, 623, -140, -490, 4810, 4137, 3117, 623, 4137, 63933, 7100,
     ]];

@@ -2,7 +2,7 @@
 //! for statics and small stacks) gives exactly what the by-value constructors
 //! give; the double-buffered `step` (new net written over the previous one)
 //! gives exactly the out-of-place `DNet::refined` chain; bad input and a
-//! failing step leave everything unchanged (spec EG.md §1–§9; kernel rule:
+//! failing step leave everything unchanged (docs/math/eg.md §1–§9; kernel rule:
 //! every bad input a typed error, state untouched).
 
 mod eg_support;

@@ -1,4 +1,4 @@
-//! The limit point c0 (spec EG.md §4): (4)∘R = (3), c0 is fixed by every step,
+//! The limit point c0 (docs/math/eg.md §4): (4)∘R = (3), c0 is fixed by every step,
 //! and the nets converge to it at the rate λ of §8.
 
 mod eg_support;

@@ -1,4 +1,4 @@
-//! EG rings (spec EG.md §9): the ring patches of consecutive steps join C²
+//! EG rings (docs/math/eg.md §9): the ring patches of consecutive steps join C²
 //! with each other, across sectors, and with the surrounding bi-3 surface of
 //! a c-net extended by one ring of quads; for n = 4 they are the bicubic cap.
 

@@ -1,4 +1,4 @@
-//! The kernel's ring patches (spec EG.md §9) are bit for bit those of a
+//! The kernel's ring patches (docs/math/eg.md §9) are bit for bit those of a
 //! straightforward construction written here from the spec: every node of a
 //! patch's 5×5 block looked up by position (§2 change of frame), the regular
 //! ones refined from the old d-net one by one (§5, tensor product of the

@@ -1,4 +1,4 @@
-//! The EG step (spec EG.md §5, §6): affine invariance, the regular n = 4 case,
+//! The EG step (docs/math/eg.md §5, §6): affine invariance, the regular n = 4 case,
 //! and caller tables that equal the built-in ones.
 
 mod eg_support;

@@ -214,7 +214,7 @@ fn polar_contract<R: Range>(
         let r = if c2ps {
             net.step(FirstStep::Uniform)
         } else {
-            net.try_rts_step()
+            net.rts_step()
         };
         match r {
             Ok(()) => {}
@@ -232,9 +232,9 @@ fn polar_contract<R: Range>(
                     "step failed at {m:e} (N = {})",
                     net.valence()
                 );
-                // The infallible form does nothing either.
+                // A retry fails the same way and still changes nothing.
                 if !c2ps {
-                    net.rts_step();
+                    prop_assert_eq!(net.rts_step(), Err(Error::NonFinite));
                     prop_assert_eq!(polar_state(&net), before);
                 }
                 return Ok(());
@@ -538,4 +538,59 @@ fn measured_edges() {
     }
     report::<f32>("f32");
     report::<f64>("f64");
+}
+
+/// A net whose coordinates the step could overflow (f32, valence 6,
+/// coordinates near 1e37 > `MAX/(16·6)` ≈ 3.5e36): `rts_step` reports
+/// [`Error::NonFinite`] exactly as `step` does, for both storages, and leaves
+/// the net as it was; scaled down below the bound, the same net refines.
+#[test]
+fn rts_step_reports_an_overflowing_net_like_step() {
+    use capdiv::PolarNetBuf;
+    const N: usize = 6;
+    let net_at = |scale: f32| -> ([f32; 3], Vec<Vec<[f32; 3]>>) {
+        let links = (1..=5)
+            .map(|i| {
+                (0..N)
+                    .map(|j| {
+                        let t = std::f32::consts::TAU * j as f32 / N as f32;
+                        let r = scale * i as f32;
+                        [r * t.cos(), r * t.sin(), 0.5 * r]
+                    })
+                    .collect()
+            })
+            .collect();
+        ([0.0, 0.0, -0.25 * scale], links)
+    };
+    let state = |net: &PolarNet<f32, 64>| {
+        let links: Vec<Vec<Point3<f32>>> = (1..=5).map(|i| net.link(i).unwrap().to_vec()).collect();
+        (net.pole(), net.valence(), net.links_held(), links)
+    };
+
+    let (pole, links) = net_at(1e37);
+    let mut net = PolarNet::<f32, 64>::new(pole, &links).unwrap();
+    let before = state(&net);
+    assert_eq!(net.step(FirstStep::Uniform), Err(Error::NonFinite));
+    assert_eq!(net.rts_step(), Err(Error::NonFinite));
+    assert_eq!(state(&net), before, "a failed RTS step changed the net");
+
+    let cap = PolarNetBuf::<f32>::capacity_for(N, 0).unwrap();
+    let mut link_storage = vec![Point3([0.0f32; 3]); PolarNetBuf::<f32>::link_storage_len(cap)];
+    let mut root_storage = vec![[0.0f32; 2]; PolarNetBuf::<f32>::root_storage_len(cap)];
+    let mut buf = PolarNetBuf::new(pole, &links, &mut link_storage, &mut root_storage).unwrap();
+    let pole_before = buf.pole();
+    let link1_before = buf.link(1).unwrap().to_vec();
+    assert_eq!(buf.rts_step(), Err(Error::NonFinite));
+    assert_eq!(buf.pole(), pole_before);
+    assert_eq!(buf.link(1).unwrap(), &link1_before[..]);
+
+    // 1e34 < MAX/(16·6): three RTS steps succeed, finite, valence kept.
+    let (pole, links) = net_at(1e34);
+    let mut net = PolarNet::<f32, 64>::new(pole, &links).unwrap();
+    for _ in 0..3 {
+        assert_eq!(net.rts_step(), Ok(()));
+    }
+    assert_eq!(net.valence(), N);
+    assert!(net.pole().0.iter().all(|c| c.is_finite()));
+    assert_ne!(state(&net).0, Point3(pole));
 }

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §4, eq. (30): after m plain C²PS steps the pole is
+//! docs/math/c2ps.md §4, eq. (30): after m plain C²PS steps the pole is
 //! `p0 − μ^m/3 p3` and link 1 its closed form in p0..p5, to round-off.
 
 use capdiv::{FirstStep, Point3, PolarNet, PoleJet};

@@ -26,12 +26,12 @@ fn reset_equals_new_and_reuses_the_net() {
     let mut net: PolarNet<f64, 384> = PolarNet::empty();
     assert_eq!(net.valence(), 0);
     assert_eq!(net.links_held(), 0);
-    // An empty net refuses to step and ignores an RTS step.
+    // An empty net refuses to step; an RTS step on it does nothing.
     assert_eq!(
         net.step(FirstStep::Uniform),
         Err(Error::NotEnoughLinks { needed: 2, held: 0 })
     );
-    net.rts_step();
+    assert_eq!(net.rts_step(), Ok(()));
     assert_eq!(net.valence(), 0);
     assert_eq!(PoleJet::of(&net).geometry(), Err(Error::Degenerate));
 

@@ -1,4 +1,4 @@
-//! The level-0 outer region (spec C2PS.md §5): span count and C² contact with
+//! The level-0 outer region (docs/math/c2ps.md §5): span count and C² contact with
 //! the level-0 ring.
 
 use capdiv::{OuterRegion, Point3, PolarNet};

@@ -1,4 +1,4 @@
-//! Streaming C²PS (`PolarStream`, spec C2PS.md §2, §4, §5): every patch of
+//! Streaming C²PS (`PolarStream`, docs/math/c2ps.md §2, §4, §5): every patch of
 //! every ring equals the in-place `PolarNetBuf` path's, the pole jet equals
 //! `PoleJet::of`, errors come before any patch, and the state grows linearly
 //! with the maximum depth.

@@ -1,5 +1,5 @@
 //! The compile-time root table and the root ring against the host's `f64`
-//! `cos`/`sin` (spec C2PS.md §2 angles `c(j/N)`, `s(j/N)`).
+//! `cos`/`sin` (docs/math/c2ps.md §2 angles `c(j/N)`, `s(j/N)`).
 
 use capdiv::trig::{primitive_root, RootsOfUnity, MAX_ODD_PART, ODD_ROOTS};
 use std::f64::consts::TAU;

@@ -100,7 +100,7 @@ for (const c of cases) {
   line(`jet ${j}`, j > 0 ? get(jetAt, j) : []);
   count++;
 }
-// EG (spec EG.md): c-nets of valence n, sector s spanned by the directions at
+// EG (docs/math/eg.md): c-nets of valence n, sector s spanned by the directions at
 // 2πs/n and 2π(s+1)/n, nodes in the §1 order, on a perturbed paraboloid.
 const order = [[1, 0], [2, 0], [1, 1], [2, 1], [1, 2], [2, 2]];
 function cnet(n) {

@@ -4,7 +4,7 @@
 
 use crate::{c2ps, eg};
 
-/// C²PS (spec C2PS.md §2): builds the level-0 configuration `pole`, `coords`
+/// C²PS (docs/math/c2ps.md §2): builds the level-0 configuration `pole`, `coords`
 /// in `work`, refines it `steps` times and writes
 /// `[N, K, pole x y z, links 1..K]` (`5 + 3·K·N` values, `N` the new valence,
 /// `K ≤ 5` the links held, each link `N` points `x, y, z`) to `out`.
@@ -47,7 +47,7 @@ pub unsafe extern "C" fn capdiv_c2ps_refine_f32(
     }
 }
 
-/// C²PS: as `capdiv_c2ps_refine_f32`, then writes the pole jet (spec C2PS.md
+/// C²PS: as `capdiv_c2ps_refine_f32`, then writes the pole jet (docs/math/c2ps.md
 /// §4): `p0..p5` (18 floats), then the unit normal (3), Gaussian and mean
 /// curvature, the two principal curvatures — 25 floats, or only the 18 of the
 /// jet when the tangent plane is degenerate. `out_len ≥ 25`.
@@ -78,7 +78,7 @@ pub unsafe extern "C" fn capdiv_c2ps_jet_f32(
     }
 }
 
-/// EG (spec EG.md): builds the c-net `center`, `nodes` (`6n` points, §1
+/// EG (docs/math/eg.md): builds the c-net `center`, `nodes` (`6n` points, §1
 /// order, as `x, y, z`; `nodes_len = 18n`), refines it `steps` times (§5, §6;
 /// built-in rules for n = 3, 4, 5) and writes
 /// `[n, c0 x y z, d-net: n sectors × 12 nodes (§2 order)]`, `4 + 36n` floats
@@ -102,7 +102,7 @@ pub unsafe extern "C" fn capdiv_eg_refine_f32(
 }
 
 /// EG: as `capdiv_eg_refine_f32`, then writes the last step's ring (spec
-/// EG.md §9): `3n` bi-4 Bézier patches of 5×5 control points (`points[i][j]`,
+/// docs/math/eg.md §9): `3n` bi-4 Bézier patches of 5×5 control points (`points[i][j]`,
 /// `j` fastest, each `x, y, z`), `225n` floats (`capdiv_eg_ring_len(n)`);
 /// 0 before the first step (no ring yet).
 ///

@@ -1,4 +1,4 @@
-//! The C²PS calls (spec C2PS.md), once for both scalar types: build a
+//! The C²PS calls (docs/math/c2ps.md), once for both scalar types: build a
 //! [`PolarNetBuf`] in the caller's work buffer from a flat level-0
 //! configuration (§1), refine it (§2), write the net or its pole jet (§4).
 

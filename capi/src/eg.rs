@@ -1,4 +1,4 @@
-//! The EG calls (spec EG.md), once for both scalar types: a c-net (§1) from
+//! The EG calls (docs/math/eg.md), once for both scalar types: a c-net (§1) from
 //! flat coordinates, refined on the stack (§5, §6), written as its d-net (§2)
 //! or its last ring of bi-4 patches (§9).
 

@@ -16,9 +16,9 @@
 //!   KiB). EG subdivisions have a fixed size and live on the stack. The
 //!   unsuffixed `f64` calls are the WASM module's: C²PS with its work buffer
 //!   on the stack ([`abi_f64::CAPDIV_CAPACITY`]).
-//! - Layouts: a polar configuration (spec C2PS.md §1) is `pole` (3 scalars)
+//! - Layouts: a polar configuration (docs/math/c2ps.md §1) is `pole` (3 scalars)
 //!   and `coords`, links 1..L each `valence` points of `x, y, z` (as
-//!   [`capdiv::PolarNet::from_flat`]); an EG c-net (spec EG.md §1) is `center`
+//!   [`capdiv::PolarNet::from_flat`]); an EG c-net (docs/math/eg.md §1) is `center`
 //!   and `nodes`, `6n` points sector by sector in the §1 order.
 //!
 //! Panic-free: the crate's panic handler (also the WASM module's) calls

@@ -50,11 +50,11 @@ pub enum Command {
 /// Subdivision scheme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Scheme {
-    /// C²PS, the valence doubles every step (spec C2PS.md §2).
+    /// C²PS, the valence doubles every step (docs/math/c2ps.md §2).
     C2ps,
-    /// RTS, the stationary auxiliary scheme, valence kept (spec C2PS.md §3).
+    /// RTS, the stationary auxiliary scheme, valence kept (docs/math/c2ps.md §3).
     Rts,
-    /// EG, Evolving Guide subdivision of a c-net or d-net (spec EG.md §5, §6).
+    /// EG, Evolving Guide subdivision of a c-net or d-net (docs/math/eg.md §5, §6).
     Eg,
 }
 
@@ -261,7 +261,7 @@ pub enum Precision {
     F32,
 }
 
-/// Rule for the 2-link in the first C²PS step (spec C2PS.md §2).
+/// Rule for the 2-link in the first C²PS step (docs/math/c2ps.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum FirstStepArg {
     /// The paper's §6 variant (the pole stands in for link 0).
@@ -446,7 +446,7 @@ pub struct SpectrumArgs {
     #[arg(long, value_name = "N")]
     pub valence: usize,
     /// A rule table `{"valence", "A11", "A22", "A21", "A31", "A32"}` (spec
-    /// EG.md §7 format) instead of the built-in one; `-` reads stdin.
+    /// docs/math/eg.md §7 format) instead of the built-in one; `-` reads stdin.
     #[arg(long, value_name = "FILE")]
     pub table: Option<String>,
     /// Pretty-print the JSON.

@@ -1,7 +1,7 @@
 //! Compile-time capacity tiers for [`capdiv::PolarNet`].
 //!
 //! A net's capacity `CAP` is a const generic: it bounds the valence, and a
-//! level-`m` configuration has valence `n·2^m` (spec C2PS.md §1). The CLI
+//! level-`m` configuration has valence `n·2^m` (docs/math/c2ps.md §1). The CLI
 //! compiles a few tiers and runs each job in the smallest that fits.
 //! Memory of one net is about `17·CAP·size_of::<R>()` bytes (kernel
 //! `polar::net`), 17.8 MB for the largest tier in `f64`: nets live on the

@@ -9,6 +9,7 @@ pub const EXIT_FAILURE: i32 = 2;
 
 /// Everything that can make a command fail.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum CliError {
     /// The command line is wrong (message from clap or from our own checks).
     Usage(String),
@@ -126,6 +127,10 @@ impl fmt::Display for CliError {
         }
     }
 }
+
+/// The message includes the kernel's, the mesh's or the evaluator's error
+/// it wraps, so none is reported again as a source.
+impl core::error::Error for CliError {}
 
 impl CliError {
     /// The message as printed: `error: …`, newlines folded so that it is

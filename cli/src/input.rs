@@ -1,13 +1,13 @@
 //! Reading and parsing the JSON input.
 //!
-//! The schema is tagged by `kind` (spec C2PS.md §1 for `polar`):
+//! The schema is tagged by `kind` (docs/math/c2ps.md §1 for `polar`):
 //!
 //! ```json
 //! {"kind": "polar", "pole": [x, y, z], "links": [[[x, y, z], ...], ...]}
 //! ```
 //!
 //! `links[0]` is the 1-link; every link is a closed ring, counter-clockwise seen
-//! from the side the surface normal points to. The EG inputs (spec EG.md §1,
+//! from the side the surface normal points to. The EG inputs (docs/math/eg.md §1,
 //! §2):
 //!
 //! ```json
@@ -49,9 +49,9 @@ pub enum Input {
     /// A polar configuration (C²PS).
     Polar(PolarInput),
     /// An EG control net around an extraordinary node: center and `n` sectors
-    /// of 6 points (spec EG.md §1).
+    /// of 6 points (docs/math/eg.md §1).
     Cnet(CnetInput),
-    /// An EG d-net: `n` sectors of 12 points, optional `c0` (spec EG.md §2).
+    /// An EG d-net: `n` sectors of 12 points, optional `c0` (docs/math/eg.md §2).
     Dnet(DnetInput),
     /// A whole polygon mesh (`capdiv surface`).
     Mesh(MeshJson),

@@ -8,7 +8,7 @@
 //!   EG, `mesh` for `capdiv surface`, which also reads Wavefront OBJ);
 //! - [`table`]: user rule tables for EG (`--table FILE`);
 //! - [`capacity`]: choosing a compile-time net capacity for the valence a job
-//!   needs (spec C2PS.md §1: level `m` has valence `n·2^m`);
+//!   needs (docs/math/c2ps.md §1: level `m` has valence `n·2^m`);
 //! - [`commands`]: one module per subcommand, each producing its output in
 //!   memory;
 //! - [`output`]: the serialisable output types and the all-or-nothing writers

@@ -43,7 +43,7 @@ impl<R: Scalar> PolarOutput<R> {
     }
 }
 
-/// An EG d-net, the `dnet` input schema (spec EG.md §2): `c0` and `n`
+/// An EG d-net, the `dnet` input schema (docs/math/eg.md §2): `c0` and `n`
 /// sectors of 12 nodes in the order `00 10 20 30 01 11 21 31 02 12 22 32`.
 #[derive(Clone, Debug, Serialize)]
 pub struct DnetOutput<R> {
@@ -71,7 +71,7 @@ impl<R: Scalar> DnetOutput<R> {
     }
 }
 
-/// `capdiv pole` of an EG input: the limit point `c0` (spec EG.md §4).
+/// `capdiv pole` of an EG input: the limit point `c0` (docs/math/eg.md §4).
 #[derive(Clone, Debug, Serialize)]
 pub struct EgPoleOutput<R> {
     /// `c0`: formula (3) of a c-net, the given or fitted (4) `c0` of a d-net.
@@ -79,7 +79,7 @@ pub struct EgPoleOutput<R> {
 }
 
 /// `capdiv spectrum`: the spectrum of the EG subdivision matrix `A_n`
-/// (spec EG.md §6, §8); see [`crate::commands::spectrum`] for the definitions.
+/// (docs/math/eg.md §6, §8); see [`crate::commands::spectrum`] for the definitions.
 #[derive(Clone, Debug, Serialize)]
 pub struct SpectrumOutput {
     /// The valence n.
@@ -98,7 +98,7 @@ pub struct SpectrumOutput {
     pub mu_over_lambda2: [f64; 3],
 }
 
-/// The pole's jet and geometry (spec C2PS.md §4).
+/// The pole's jet and geometry (docs/math/c2ps.md §4).
 #[derive(Clone, Debug, Serialize)]
 pub struct PoleOutput<R> {
     /// Limit point `p0`.

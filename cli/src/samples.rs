@@ -8,7 +8,7 @@
 //! normal: `K = f_xx f_yy − f_xy²`, `H = (f_xx + f_yy)/2` (the gradient vanishes
 //! there).
 //!
-//! What the C²PS limit reproduces (spec C2PS.md §4, `p3 = A − q00`,
+//! What the C²PS limit reproduces (docs/math/c2ps.md §4, `p3 = A − q00`,
 //! `p4 = 3 C2`): the rotationally symmetric part `x² + y²` exactly, so a
 //! sampled paraboloid has the analytic curvature at the pole; the `cos 2τ` part
 //! of the 1-link enters with the factor 3/2 (`C2` of `h² cos 2τ` is `h²/2`), so
@@ -16,7 +16,7 @@
 //! sampled surface's. Control points on a surface are not points of the limit.
 
 //!
-//! EG samples ([`eg_samples`]): c-nets (spec EG.md §1) of valence 3 and 5,
+//! EG samples ([`eg_samples`]): c-nets (docs/math/eg.md §1) of valence 3 and 5,
 //! node `(x, y)` of sector `s` placed at `h (x u_s + y u_{s+1})` in the plane,
 //! `u_s = (cos 2πs/n, sin 2πs/n)` (sectors counter-clockwise seen from +z),
 //! lifted to `z = f(x, y)`; the center is `(0, 0, f(0, 0))`.
@@ -84,7 +84,7 @@ pub fn demo_samples() -> Vec<Sample> {
                 gaussian: 1.0,
                 mean: 1.0,
             },
-            note: "rotationally symmetric quadratic: reproduced exactly (C2PS.md §4)",
+            note: "rotationally symmetric quadratic: reproduced exactly (docs/math/c2ps.md §4)",
         },
         Sample {
             name: "saddle",

@@ -5,10 +5,10 @@
 //!
 //! | input | scheme | patches |
 //! |---|---|---|
-//! | polar | `c2ps` (default) | `PolarNet::step` rings (spec C2PS.md §5), levels 0..M (those with 5 links), plus the level-0 outer region |
+//! | polar | `c2ps` (default) | `PolarNet::step` rings (docs/math/c2ps.md §5), levels 0..M (those with 5 links), plus the level-0 outer region |
 //! | polar | `rts` | the same rings after `PolarNet::rts_step` (§3; valence kept) |
 //! | polar | `catmull-clark` | the configuration as a mesh (pole fan of triangles, quad rings between the links) through `capdiv_mesh` with `PlanOptions::catmull_clark`: two Catmull-Clark refinement steps, then a CC cap at the pole (and at the fan triangles' centres); only the faces between the pole and link 4 are kept, the region the C²PS rings cover |
-//! | cnet | `eg` (default) | `EgSubdivision` rings of steps 1..M (spec EG.md §9) |
+//! | cnet | `eg` (default) | `EgSubdivision` rings of steps 1..M (docs/math/eg.md §9) |
 //! | cnet | `catmull-clark` | the kernel's `CcCap` on the same c-net, rings of steps 1..M (same layout) |
 //! | dnet | `eg` | as cnet |
 //! | mesh | default, `c2ps`, `eg` | `capdiv surface`'s pipeline (C²PS at poles, EG at n = 3, 5, CC elsewhere) |
@@ -74,8 +74,8 @@ pub struct Shape {
 }
 
 /// Why EG has no limit value here.
-pub const EG_NO_LIMIT: &str = "EG: the spec gives the limit point c0 (EG.md §4) but no \
-     limit curvature, and mu/lambda^2 = 1.00016 (n = 3, 5; EG.md §8) is not exactly 1, \
+pub const EG_NO_LIMIT: &str = "EG: the spec gives the limit point c0 (docs/math/eg.md §4) but no \
+     limit curvature, and mu/lambda^2 = 1.00016 (n = 3, 5; docs/math/eg.md §8) is not exactly 1, \
      so curvature at the centre is only nearly settled";
 /// Why RTS has none.
 pub const RTS_NO_LIMIT: &str = "RTS: its rings' curvature does not settle to one value \
@@ -223,7 +223,7 @@ impl NetJob<f64> for PolarJob<'_> {
             }
             if level < self.depth {
                 if self.rts {
-                    net.try_rts_step().map_err(kernel)?;
+                    net.rts_step().map_err(kernel)?;
                 } else {
                     net.step(FirstStep::Uniform).map_err(kernel)?;
                 }

@@ -1,4 +1,4 @@
-//! Rule tables supplied by the user (`--table FILE`) for EG (spec EG.md §6,
+//! Rule tables supplied by the user (`--table FILE`) for EG (docs/math/eg.md §6,
 //! §7): the five arrays of one valence in the spec's format,
 //!
 //! ```json

@@ -1,6 +1,6 @@
 //! The numbers behind the pictures. Curvature from the patches'
 //! derivatives (`TensorPatch::jet` + `SurfaceJet::geometry`) against the
-//! C²PS pole jet (spec C2PS.md §4) and analytic quadrics; the `curvature`
+//! C²PS pole jet (docs/math/c2ps.md §4) and analytic quadrics; the `curvature`
 //! table's convergence for C²PS and divergence for Catmull-Clark; the
 //! command's output format and errors.
 mod common;
@@ -34,7 +34,7 @@ fn bumpy() -> capdiv_cli::input::PolarInput {
 
 /// At the inner edge of the level-m C²PS ring (`r = 2·2^-m`, span-0 patches
 /// at `u = 0`) the curvature from the patch derivatives approaches the pole
-/// jet's. The limit surface is C² at the pole (spec C2PS.md §4, eq. (32)),
+/// jet's. The limit surface is C² at the pole (docs/math/c2ps.md §4, eq. (32)),
 /// so K and H are continuous there: the difference is O(r), i.e. it should
 /// about halve per level. Asserted: from level 3 on it shrinks by at least
 /// 0.7 per level (measured 0.36–0.42 on the bumpy net, 0.30–0.47 on the
@@ -99,7 +99,7 @@ fn inner_edge() {
 }
 
 /// Analytic quadrics. (1) C²PS reproduces rotationally symmetric quadratics
-/// at the pole (spec C2PS.md §4, p3 = A − q00): a sampled paraboloid
+/// at the pole (docs/math/c2ps.md §4, p3 = A − q00): a sampled paraboloid
 /// `z = (x²+y²)/2` has K = H = 1 at the pole, to rounding. (2) A sampled
 /// saddle `z = (x²−y²)/2` limits to 1.5× that (p4 = 3 C2, docs/verification.md, "Where the
 /// spec does not hold"): K = −2.25, H = 0. (3) A valence-4 c-net is regular:

@@ -1,4 +1,4 @@
-//! `capdiv patches` on EG inputs (spec EG.md §9): the rings of steps 1..M,
+//! `capdiv patches` on EG inputs (docs/math/eg.md §9): the rings of steps 1..M,
 //! `3n` bi-4 patches each, in the documented order, equal to the kernel's;
 //! neighbouring patches share their edges (within a ring, across sectors,
 //! between consecutive rings); the OBJ and PNG outputs.

@@ -1,9 +1,10 @@
-//! `capdiv pole` on EG inputs: `{"limit"}` = `c0` (spec EG.md §4), against
-//! formulas (3) and (4) computed here from the spec, independently of the
-//! kernel; the limit is the same at every level.
+//! `capdiv pole` on EG inputs: `{"limit"}` = `c0` (docs/math/eg.md §4), against
+//! formulas (3) and (4) with the reference crate's weights (`capdiv_reference::eg`),
+//! independent of the kernel; the limit is the same at every level.
 
 mod common;
 
+use capdiv_reference::eg;
 use common::*;
 use serde_json::Value;
 
@@ -14,60 +15,35 @@ fn limit_of(args: &[&str], stdin: Option<&[u8]>) -> [f64; 3] {
     p3(&out["limit"])
 }
 
-/// Formula (3) of spec §4.
+/// Formula (3) of docs/math/eg.md §4, by the reference crate's weights.
 fn formula_3(center: [f64; 3], sectors: &[[[f64; 3]; 6]]) -> [f64; 3] {
-    let n = sectors.len() as f64;
-    let (we, w6, w5) = if sectors.len() == 3 {
-        (11.0 / 32.0, 1.0 / 6.0, 5.0 / 96.0)
-    } else {
-        (n / (n + 5.0), 4.0 / (n * (n + 5.0)), 1.0 / (n * (n + 5.0)))
-    };
-    let mut c = center.map(|x| we * x);
-    for s in sectors {
-        // (1,0) is node 0, (1,1) node 2 in the §1 order.
-        for k in 0..3 {
-            c[k] += w6 * s[0][k] + w5 * s[2][k];
+    let n = sectors.len();
+    let w = eg::c0_from_cnet_weights(n);
+    // The §1 order of a sector's nodes.
+    const ORDER: [(i64, i64); 6] = [(1, 0), (2, 0), (1, 1), (2, 1), (1, 2), (2, 2)];
+    let mut c = center.map(|x| w[eg::c_index(n, 0, 0, 0)] * x);
+    for (s, sector) in sectors.iter().enumerate() {
+        for (p, &(x, y)) in sector.iter().zip(&ORDER) {
+            let wk = w[eg::c_index(n, s as isize, x, y)];
+            for k in 0..3 {
+                c[k] += wk * p[k];
+            }
         }
     }
     c
 }
 
-/// Formula (4) of spec §4 (with the spec's corrected e32).
+/// Formula (4) of docs/math/eg.md §4 (with the corrected e32), by the
+/// reference crate's weights.
 fn formula_4(sectors: &[[[f64; 3]; 12]]) -> [f64; 3] {
-    let n = sectors.len();
-    let nf = n as f64;
-    let (g, e00, e20, e22, e30, e31, e32) = if n == 3 {
-        let e00 = 11.0;
-        // e30 = e10 = −6 e00, e31 = e11 = 36 e00.
-        (
-            93120.0,
-            e00,
-            -73.0,
-            10643.0,
-            -6.0 * e00,
-            36.0 * e00,
-            19062.0,
-        )
-    } else {
-        let e30 = 336.0 * (153.0 * nf - 448.0);
-        (
-            178480.0 * nf * (nf + 5.0),
-            2587.0 * nf - 8377.0,
-            19339.0 * nf - 53929.0,
-            157051.0 * nf + 50279.0,
-            e30,
-            -6.0 * e30,
-            48.0 * (8483.0 * nf - 5008.0),
-        )
-    };
-    let (e10, e11, e21) = (-6.0 * e00, 36.0 * e00, -6.0 * e20);
-    // 00 10 20 30 01 11 21 31 02 12 22 32
-    let e = [e00, e10, e20, e30, e10, e11, e21, e31, e20, e21, e22, e32];
+    let w = eg::c0_from_dnet_weights(sectors.len());
     let mut c = [0.0; 3];
-    for s in sectors {
-        for (p, w) in s.iter().zip(e) {
+    for (s, sector) in sectors.iter().enumerate() {
+        // The §2 order 00 10 20 30 01 11 21 31 02 12 22 32: node i + 4j.
+        for (ij, p) in sector.iter().enumerate() {
+            let wk = w[eg::d_index(s, ij % 4, ij / 4)];
             for k in 0..3 {
-                c[k] += w / g * p[k];
+                c[k] += wk * p[k];
             }
         }
     }

@@ -1,4 +1,4 @@
-//! `capdiv refine` on EG inputs (spec EG.md §1–§6): the output is the `dnet`
+//! `capdiv refine` on EG inputs (docs/math/eg.md §1–§6): the output is the `dnet`
 //! schema and a valid input again (round trip), steps compose through the
 //! printed output, and the numbers are the kernel's, bit for bit.
 

@@ -309,7 +309,7 @@ fn spectrum_and_table_errors() {
         true,
     );
     fails(&["spectrum"], None, "--valence", false);
-    // The kernel's checks of a user table, each named (spec §6-§8).
+    // The kernel's checks of a user table, each named (docs/math/eg.md §6–§8).
     let cases: Vec<(std::path::PathBuf, &str)> = vec![
         (
             table_file(d, "rows.json", |t| {
@@ -597,4 +597,33 @@ fn help_and_version_succeed() {
     capdiv(&["--version"], None).assert_ok();
     capdiv(&["refine", "--help"], None).assert_ok();
     capdiv(&["spectrum", "--help"], None).assert_ok();
+}
+
+/// A net whose coordinates an f32 step could overflow (near 1e37, above
+/// `f32::MAX/(16·6)`): RTS fails exactly as C²PS does (exit 2, "not
+/// finite"), instead of printing the input unrefined; in f64 both refine.
+#[test]
+fn rts_overflow_fails_like_c2ps() {
+    let (pole, links) = config(6, 5, 11);
+    let scale = |p: [f64; 3]| p.map(|c| c * 1e37);
+    let links: Vec<Vec<[f64; 3]>> = links
+        .iter()
+        .map(|l| l.iter().map(|&p| scale(p)).collect())
+        .collect();
+    let input = serde_json::to_string(&polar_json(scale(pole), &links)).unwrap();
+    for scheme in ["rts", "c2ps"] {
+        let args = [
+            "refine",
+            "--scheme",
+            scheme,
+            "--steps",
+            "3",
+            "--precision",
+            "f32",
+            "-",
+        ];
+        fails(&args, Some(input.as_bytes()), "not finite", true);
+        let f64_args = ["refine", "--scheme", scheme, "--steps", "3", "-"];
+        capdiv(&f64_args, Some(input.as_bytes())).assert_ok();
+    }
 }

@@ -48,7 +48,7 @@ fn counts_are_2n_per_ring_level_plus_the_outer_region() {
     }
 }
 
-/// A ring needs links 1..5: K input links give 2K−1 after a step (C2PS.md §2),
+/// A ring needs links 1..5: K input links give 2K−1 after a step (docs/math/c2ps.md §2),
 /// so K ≥ 5 has ring 0, K = 3, 4 start at level 1, K = 2 at level 2.
 #[test]
 fn rings_exist_from_the_level_with_five_links() {
@@ -93,7 +93,7 @@ fn json_equals_the_kernel_bit_for_bit() {
     assert_eq!(got, want);
 }
 
-/// The outer region starts where ring 0 ends (r = 4, C2PS.md §5): the inner
+/// The outer region starts where ring 0 ends (r = 4, docs/math/c2ps.md §5): the inner
 /// boundary row of outer patch `c` equals the outer boundary row of ring-0
 /// span-1 patch `c` (the same B-spline curve from links 3..5).
 #[test]

@@ -1,6 +1,6 @@
 //! `capdiv pole`: the limit point against an independent computation, the
 //! curvatures of sampled quadrics against hand-derived values, invariance
-//! under refinement (C2PS.md §4).
+//! under refinement (docs/math/c2ps.md §4).
 
 mod common;
 
@@ -73,7 +73,7 @@ fn limit_is_two_thirds_pole_plus_one_third_mean_of_link_1() {
     }
 }
 
-/// Sampled `z = a (x² + y²)` on circles of radius `i·h`: by hand (C2PS.md §4),
+/// Sampled `z = a (x² + y²)` on circles of radius `i·h`: by hand (docs/math/c2ps.md §4),
 /// `A = (0, 0, a h²)`, `C1 = (h/2, 0, 0)`, `S1 = (0, h/2, 0)`, `C2 = S2 = 0`
 /// (n ≥ 4), so the limit surface is `z = a h²/3 + a (X² + Y²)` with `X = h x`:
 /// K = 4a², H = 2a, both principal curvatures 2a, normal +z, limit `a h²/3`.
@@ -113,7 +113,7 @@ fn sampled_paraboloid_has_the_analytic_curvature() {
     }
 }
 
-/// Lemma 5 (C2PS.md §4): at level m, p1, p2 scale by 2^-m and p3..p5 by 4^-m
+/// Lemma 5 (docs/math/c2ps.md §4): at level m, p1, p2 scale by 2^-m and p3..p5 by 4^-m
 /// while link i sits at r = i·2^-m, so normal and curvatures at the pole are
 /// the same at every level, and the limit point too.
 #[test]

@@ -7,7 +7,7 @@ use capdiv::{FirstStep, PolarNet};
 use common::*;
 
 /// Links the kernel holds after `m` steps from `k` input links: old links up
-/// to K give new links up to 2K−1, at most 5 are stored (C2PS.md §2).
+/// to K give new links up to 2K−1, at most 5 are stored (docs/math/c2ps.md §2).
 fn links_after(k: usize, m: u32) -> usize {
     let mut held = k.min(5);
     for _ in 0..m {
@@ -60,7 +60,7 @@ fn kernel_f64(
     let mut net: PolarNet<f64, 2048> = PolarNet::new(pole, links).unwrap();
     for _ in 0..m {
         if rts {
-            net.rts_step();
+            net.rts_step().unwrap();
         } else {
             net.step(first).unwrap();
         }

@@ -1,4 +1,4 @@
-//! `capdiv spectrum` (spec EG.md §8): the spectrum of the subdivision matrix
+//! `capdiv spectrum` (docs/math/eg.md §8): the spectrum of the subdivision matrix
 //! assembled from the kernel's step against the spec's verified table, the
 //! Catmull-Clark λ_CC formula, valence 4's regular spectrum, and user tables:
 //! the spec's arrays as a file reproduce the built-in spectrum, the paper's
@@ -55,7 +55,7 @@ fn check_structure(out: &Value, n: usize) {
 
 #[test]
 fn builtin_n3_and_n5_reproduce_the_spec_table() {
-    // Spec §8: λ (double), λ_CC, μ/λ² single and double, the paper's μ/λ².
+    // docs/math/eg.md §8: λ (double), λ_CC, μ/λ² single and double, the paper's μ/λ².
     let spec = [
         (3, 0.4100423, 0.4100971, 1.000157, 0.998065, 1.00015),
         (5, 0.5499951, 0.5499884, 1.000160, 1.000118, 1.00016),
@@ -132,7 +132,7 @@ fn a_table_file_with_the_builtin_arrays_gives_the_builtin_spectrum() {
 
 #[test]
 fn the_papers_uncorrected_n5_entry_shows_in_the_spectrum() {
-    // Spec §7: A21 row r = 4, column 01 is −59; the paper's text prints 59.
+    // docs/math/eg.md §7: A21 row r = 4, column 01 is −59; the paper's text prints 59.
     // The kernel's checks accept that table (λ is still within 10⁻³ of λ_CC),
     // but μ/λ² is far from §8's 1.000160 / 1.000118 — what the command is for.
     let dir = tempdir();

@@ -112,7 +112,7 @@ fn c2ps_reference(depth: u32, add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     let flat: Vec<f64> = LINKS[..5].iter().flatten().flatten().copied().collect();
     let mut rts = PolarNet::<f64, VALENCE>::from_flat(POLE, VALENCE, &flat).unwrap();
     for k in 1..=3 {
-        rts.rts_step();
+        rts.rts_step().unwrap();
         add("rtspole", &[k], p(rts.pole()));
     }
     for (j, q) in rts.link(1).unwrap().iter().enumerate() {
@@ -172,7 +172,7 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     }
 }
 
-/// EG steps the firmware applies to each sample (spec EG.md: n = 3, 5).
+/// EG steps the firmware applies to each sample (docs/math/eg.md: n = 3, 5).
 const EG_STEPS: u32 = 4;
 
 /// The C²PS numbers of `firmware/src/c2ps.rs` from the independent reference

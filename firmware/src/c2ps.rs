@@ -1,4 +1,4 @@
-//! The C²PS workload (spec C2PS.md): the sample net refined `DEPTH` times in
+//! The C²PS workload (docs/math/c2ps.md): the sample net refined `DEPTH` times in
 //! place in a static, its pole jet and geometry (§4), links, ring patches
 //! evaluated (§5), three RTS steps (§3) and the level-0 outer region (§5).
 //!
@@ -145,7 +145,7 @@ fn rts() -> Result<(), Failure> {
     }
     let mut net = PolarNet::<f32, VALENCE>::from_flat(pole(), VALENCE, &flat)?;
     for k in 1..=3 {
-        net.rts_step();
+        net.rts_step()?;
         point("rtspole", &[k], net.pole());
     }
     for (j, p) in net.link(1).unwrap_or(&[]).iter().enumerate() {

@@ -1,4 +1,4 @@
-//! The EG workload (spec EG.md): the sample c-nets of valence 3 and 5
+//! The EG workload (docs/math/eg.md): the sample c-nets of valence 3 and 5
 //! (§1), their limit point (§4, formula (3)), four EG steps each (§5, §6) on
 //! an [`EgSubdivision`] in a static, d-net nodes, and the last ring's bi-4
 //! patches evaluated (§9).

@@ -1,7 +1,7 @@
 //! The fixed sample nets, shared by the firmware and the host test that
 //! checks it (included there with `#[path]`).
 //!
-//! A level-0 polar configuration of valence 6 with 7 links (spec C2PS.md §1):
+//! A level-0 polar configuration of valence 6 with 7 links (docs/math/c2ps.md §1):
 //! link `i` is a perturbed ring of radius about `i` on the paraboloid
 //! `z ≈ i²/4`. Every coordinate is a multiple of 2⁻¹⁰ below 2⁴, so it is exact
 //! in `f32` and `f64` alike: the f32 firmware and the f64 reference start from
@@ -76,7 +76,7 @@ pub const LINKS: [[[f64; 3]; VALENCE]; LINKS_GIVEN] = [
     ],
 ];
 
-/// Center `e` of the EG sample c-nets (spec EG.md §1).
+/// Center `e` of the EG sample c-nets (docs/math/eg.md §1).
 pub const EG_CENTER: [f64; 3] = [0.0078125, -0.00390625, 0.015625];
 
 /// EG sample c-net of valence 3: 3 sectors of 6 nodes in the §1 order

@@ -1,4 +1,4 @@
-//! The streaming C²PS workload (kernel `PolarStream`, spec C2PS.md
+//! The streaming C²PS workload (kernel `PolarStream`, docs/math/c2ps.md
 //! §2, §4, §5): the sample net (valence 6) streamed to depth [`DEPTH`] — 12,
 //! i.e. 24,576 columns at the deepest ring — in one sweep whose whole state
 //! is a `PolarStream<f32, DEPTH>` static (4,732 bytes of `.bss`), far below

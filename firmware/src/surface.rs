@@ -95,7 +95,7 @@ mod c2ps {
         .flatten()
         {
             let _ = black_box(net.step(black_box(FirstStep::Plain)));
-            net.rts_step();
+            let _ = black_box(net.rts_step());
             let _ = black_box(net.link(black_box(2)));
             let _ = black_box(net.ring_patch(black_box(1), black_box(2)));
             for patch in net.ring_patches().into_iter().flatten() {

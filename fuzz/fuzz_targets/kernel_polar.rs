@@ -269,8 +269,8 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 }
                 steps += 1;
                 let (before_n, before_b) = (snap_net(&net), snap_buf(&buf));
-                let rn = net.try_rts_step();
-                let rb = buf.try_rts_step();
+                let rn = net.rts_step();
+                let rb = buf.rts_step();
                 match &rn {
                     Err(e) => {
                         assert_eq!(before_n, snap_net(&net), "rts error {e:?} changed the net")

@@ -1,4 +1,4 @@
-//! Bézier patches by Bernstein sums (spec C2PS.md §5): the uniform cubic
+//! Bézier patches by Bernstein sums (docs/math/c2ps.md §5): the uniform cubic
 //! B-spline → Bézier conversion and the evaluation of a tensor patch of degree
 //! `K−1` with its partial derivatives, `Σ_ij b_ij B_i(u) B_j(v)`. No de
 //! Casteljau here (the kernel uses de Casteljau).

@@ -1,5 +1,5 @@
 //! One C²PS step, level m → m+1, valence n → 2n, written as the paper's
-//! literal O(n²) sums (paper rules (1)–(5), (29); spec C2PS.md §2), with
+//! literal O(n²) sums (paper rules (1)–(5), (29); docs/math/c2ps.md §2), with
 //! `std` `cos`.
 //!
 //! Rule (2) reads `q'[1][j] = ½ q00 + Σ_h b_{h−j/2} q[1][h]` and rule (3)
@@ -28,7 +28,7 @@ pub const MAX_LINKS: usize = 5;
 pub enum TwoLinkRule {
     /// Rule (3) with the weights `d_g` of eq. (4).
     Plain,
-    /// The first-step variant (paper §6, spec §2): the uniform radial rule with
+    /// The first-step variant (paper §6, docs/math/c2ps.md §2): the uniform radial rule with
     /// the pole standing in for link 0, `(q00 + 6 q̃1 + q̃2)/8`.
     Uniform,
 }
@@ -139,7 +139,7 @@ pub fn step(cfg: &Polar) -> Polar {
     step_with(cfg, TwoLinkRule::Plain)
 }
 
-/// One step with the first-step variant for the 2-link (spec §2).
+/// One step with the first-step variant for the 2-link (docs/math/c2ps.md §2).
 pub fn step_first_uniform(cfg: &Polar) -> Polar {
     step_with(cfg, TwoLinkRule::Uniform)
 }

@@ -1,6 +1,6 @@
 //! Catmull-Clark subdivision (Catmull & Clark 1978), literally, on an explicit
 //! polygon mesh, and what the kernel's `cc` module is checked against: the
-//! refined neighbourhood of a c-net (spec EG.md §1), its dense subdivision
+//! refined neighbourhood of a c-net (docs/math/eg.md §1), its dense subdivision
 //! matrix, the limit weights as the matrix's left eigenvector, and the uniform
 //! bicubic B-spline patch from its literal basis functions. Shares no code
 //! with the kernel.

@@ -1,5 +1,5 @@
 //! EG (Evolving Guide) subdivision reference, assembled straight from spec
-//! `EG.md` §1–§7, independent of the kernel: the degree raising `R`
+//! `docs/math/eg.md` §1–§7, independent of the kernel: the degree raising `R`
 //! (c-net → d-net, §3), the limit-point formulas (3) and (4) (§4), and the
 //! dense `(12n+1)²` subdivision matrix `A_n` (§5–§7) with its spectrum.
 //!
@@ -10,7 +10,7 @@
 
 use nalgebra::{Complex, DMatrix, DVector};
 
-/// One EG rule table (spec §7): the integer weights (÷10⁵) of the inner new
+/// One EG rule table (docs/math/eg.md §7): the integer weights (÷10⁵) of the inner new
 /// nodes, one row of 12 per sector offset `r`, columns `00 10 20 30 01 11 21
 /// 31 02 12 22 32`. `a11`, `a22`: rows `r = 0..=⌊n/2⌋`; `a21`: `r = 0..n`;
 /// `a31`, `a32`: `r = 0..=⌊(n+1)/2⌋`.

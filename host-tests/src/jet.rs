@@ -1,5 +1,5 @@
 //! Eigencoefficients `p0..p5` and what is exactly known about them (spec
-//! C2PS.md §4), written from the spec's formulas with `std` `cos`/`sin`.
+//! docs/math/c2ps.md §4), written from the spec's formulas with `std` `cos`/`sin`.
 //!
 //! `p0 = 2/3 q00 + 1/3 A`, `p1 = 2 C1`, `p2 = 2 S1`, `p3 = A − q00`,
 //! `p4 = 3 C2`, `p5 = 3 S2` (the normalisation of the paper's Table 1).

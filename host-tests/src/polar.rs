@@ -1,4 +1,4 @@
-//! A polar configuration (spec C2PS.md §1): the pole `q00` and links
+//! A polar configuration (docs/math/c2ps.md §1): the pole `q00` and links
 //! `links[i-1]` = link `i`, each a closed ring of `n` points, index `j` mod `n`.
 
 use crate::vec3::P3;

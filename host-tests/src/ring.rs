@@ -1,4 +1,4 @@
-//! The surface ring of a configuration (spec C2PS.md §5): the uniform bicubic
+//! The surface ring of a configuration (docs/math/c2ps.md §5): the uniform bicubic
 //! B-spline with control rows = links 1..5 and `N` periodic columns over
 //! `r ∈ [2, 4]` (the configuration's own link units), as `2N` Bézier patches.
 //!

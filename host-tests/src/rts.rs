@@ -1,5 +1,5 @@
 //! RTS, the stationary auxiliary scheme (paper §5.2, rules (9)–(12); spec
-//! C2PS.md §3): the C²PS rules with the valence kept, `q̃ = q` and `b_{h−j}`,
+//! docs/math/c2ps.md §3): the C²PS rules with the valence kept, `q̃ = q` and `b_{h−j}`,
 //! `d_{h−j}` in place of `b_{h−j/2}`, `d_{h−j/2}`.
 //!
 //! Two independent forms: [`step`], the literal sums, and [`matrix`], the

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §4 and §6 item 2: Lemma 5 scaling of the eigencoefficients,
+//! docs/math/c2ps.md §4 and §6 item 2: Lemma 5 scaling of the eigencoefficients,
 //! the exact closed forms of the pole and the 1-link, the `O(8^-m)` 2-link,
 //! for C²PS with and without the first-step variant; the kernel's `PoleJet`
 //! against the reference's independently written `p0..p5` and curvatures.
@@ -121,7 +121,7 @@ proptest! {
         }
     }
 
-    /// Spec §2: the first-step variant changes neither the eigencoefficients
+    /// docs/math/c2ps.md §2: the first-step variant changes neither the eigencoefficients
     /// nor the pole and 1-link at any level (only links ≥ 2 differ).
     #[test]
     fn first_step_variant_changes_neither_jet_nor_links_0_and_1(

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §6 item 5: the f32 kernel stays within a stated bound of the
+//! docs/math/c2ps.md §6 item 5: the f32 kernel stays within a stated bound of the
 //! f64 kernel after 8 steps.
 //!
 //! Data: points uniform in [−1, 1]³ (so the largest coordinate and the level-0

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §6 item 1: the kernel's O(n) C²PS step (f64) equals the literal
+//! docs/math/c2ps.md §6 item 1: the kernel's O(n) C²PS step (f64) equals the literal
 //! O(n²) sums of the paper's rules (1)–(5), (29) with the weights of eq. (4)
 //! (`capdiv_reference::c2ps`), at every level, to ≤ 1e-12 relative to the
 //! configuration's size (its largest absolute coordinate).
@@ -21,7 +21,7 @@ use capdiv_reference::polar::Polar;
 use common::*;
 use proptest::prelude::*;
 
-/// Relative tolerance of the spec (§6.1).
+/// Relative tolerance of docs/math/c2ps.md §6 item 1.
 const REL_TOL: f64 = 1e-12;
 
 /// Refines `cfg` `depth` times with the kernel and with the reference and
@@ -57,7 +57,7 @@ proptest! {
         prop_assert!(worst <= REL_TOL, "relative difference {worst:e}");
     }
 
-    /// The first-step variant (spec §2): the uniform 2-link rule in step 1,
+    /// The first-step variant (docs/math/c2ps.md §2): the uniform 2-link rule in step 1,
     /// rules (1)–(5), (29) after it.
     #[test]
     fn kernel_first_step_variant_equals_literal_reference(

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §5 and §6 items 3–4: the kernel's ring patches equal the
+//! docs/math/c2ps.md §5 and §6 items 3–4: the kernel's ring patches equal the
 //! reference's own B-spline → Bézier conversion; consecutive rings join C²;
 //! the rings approach the quadratic Taylor expansion at the pole (eq. (32)).
 //!

@@ -1,5 +1,5 @@
 //! The kernel's EG step against the reference's dense subdivision matrix
-//! (spec EG.md §5–§7): for random d-nets, `step()` equals `A_n · (d, c0)`.
+//! (docs/math/eg.md §5–§7): for random d-nets, `step()` equals `A_n · (d, c0)`.
 //!
 //! The matrix is assembled in `capdiv_reference::eg` from the spec's arrays
 //! and frame rules, sharing no code with `src/eg`. Tolerance 1e-12 of the net's

@@ -1,4 +1,4 @@
-//! EG (spec EG.md): the dense subdivision matrix assembled from §5–§7 by the
+//! EG (docs/math/eg.md): the dense subdivision matrix assembled from §5–§7 by the
 //! reference (`capdiv_reference::eg`) has the spectrum of §8; the limit-point
 //! formulas agree, (4)∘R = (3) (§3–§4); the degree raising and the tables
 //! are consistent. Expected values are the spec's table (§8) and calculus.

@@ -1,4 +1,4 @@
-//! Spec C2PS.md §3: RTS. The dense subdivision matrix assembled entry by entry
+//! docs/math/c2ps.md §3: RTS. The dense subdivision matrix assembled entry by entry
 //! from the paper's (9)–(12) (`capdiv_reference::rts::matrix`) has the
 //! dominant spectrum 1, ½, ½, ¼, ¼, ¼ (valence ≥ 5), and the kernel's
 //! `rts_step` is that matrix's product with the configuration.
@@ -114,7 +114,7 @@ fn rts_lemma5_fails_for_valences_3_and_4() {
         let cfg = jet::eigen_configuration(&p, n, 5);
         let mut net: Box<Net> = Box::new(to_net(&cfg));
         let p0 = capdiv::PoleJet::of(&*net).p[k].0;
-        net.rts_step();
+        net.rts_step().unwrap();
         let p1 = capdiv::PoleJet::of(&*net).p[k].0;
         for c in 0..3 {
             assert!(
@@ -129,7 +129,7 @@ fn rts_lemma5_fails_for_valences_3_and_4() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
-    /// Lemma 5 for RTS (spec §4), valences 5..64, up to 8 steps:
+    /// Lemma 5 for RTS (docs/math/c2ps.md §4), valences 5..64, up to 8 steps:
     /// `p_k` after m RTS steps is `λ_k^m p_k`, to 1e-12 · size.
     #[test]
     fn rts_eigencoefficients_scale_by_eigenvalue_powers(
@@ -139,7 +139,7 @@ proptest! {
         let p = jet::coefficients(&cfg);
         let mut net: Box<Net> = Box::new(to_net(&cfg));
         for m in 1..=steps {
-            net.rts_step();
+            net.rts_step().unwrap();
             let pm = capdiv::PoleJet::of(&*net).p;
             for k in 0..6 {
                 let l = jet::EIGENVALUES[k].powi(m as i32);
@@ -164,7 +164,7 @@ proptest! {
         let mut by_matrix: Polar = cfg.clone();
         let mut literal: Polar = cfg.clone();
         for s in 1..=steps {
-            net.rts_step();
+            net.rts_step().unwrap();
             by_matrix = rts::apply_matrix(&a, &by_matrix);
             literal = rts::step(&literal);
             let kernel = from_net(&net);

@@ -1,5 +1,5 @@
 //! Finding the caps' configurations in a mesh: polar configurations (spec
-//! C2PS.md §1) and the c-nets of extraordinary points (spec EG.md §1).
+//! docs/math/c2ps.md §1) and the c-nets of extraordinary points (docs/math/eg.md §1).
 
 use crate::grid::{corner_grid, Combo};
 use crate::topology::{Topology, NONE};
@@ -71,9 +71,9 @@ pub struct PolarConfig {
     pub links: [Vec<u32>; 2],
     /// Link 3 as combinations (phantoms at a boundary), empty if unknown.
     pub link3: Vec<Combo>,
-    /// `triangles[j]` = face (pole, link1[j], link1[j+1]).
+    /// `triangles[j]` = face `(pole, link1[j], link1[j+1])`.
     pub triangles: Vec<u32>,
-    /// `quads[j]` = face (link1[j+1], link1[j], link2[j], link2[j+1]).
+    /// `quads[j]` = face `(link1[j+1], link1[j], link2[j], link2[j+1])`.
     pub quads: Vec<u32>,
     /// Corner of `quads[j]` at which `links[0][j]` sits.
     pub quad_corner: Vec<u8>,
@@ -218,7 +218,7 @@ pub fn polar_config(
     })
 }
 
-/// The c-net of an extraordinary point (spec EG.md §1) found in the mesh.
+/// The c-net of an extraordinary point (docs/math/eg.md §1) found in the mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EvConfig {
     /// The center `e`.

@@ -6,6 +6,7 @@ use core::fmt;
 
 /// Why a mesh was rejected. Display gives one line naming the face or vertex.
 #[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum MeshError {
     /// The mesh has no faces (or no vertices).
     Empty,
@@ -120,3 +121,5 @@ impl fmt::Display for MeshError {
         }
     }
 }
+
+impl core::error::Error for MeshError {}

@@ -93,7 +93,7 @@ pub struct CapRecord<R> {
     /// last ring; Catmull-Clark: the limit tangents), if not degenerate.
     pub normal: Option<Point3<R>>,
     /// Principal curvatures at the limit point: C²PS only (exact, spec
-    /// C2PS.md §4); EG and Catmull-Clark caps report none.
+    /// docs/math/c2ps.md §4); EG and Catmull-Clark caps report none.
     pub principal_curvatures: Option<[R; 2]>,
 }
 
@@ -107,6 +107,7 @@ pub trait SurfaceSink<R> {
 
 /// Why an evaluation failed.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum EvalError {
     /// `positions` does not have one entry per input vertex.
     WrongLength {
@@ -170,6 +171,10 @@ impl core::fmt::Display for EvalError {
         }
     }
 }
+
+/// The message names the kernel's error of a [`EvalError::Kernel`] itself,
+/// so no error is reported again as a source.
+impl core::error::Error for EvalError {}
 
 /// The largest valence a polar cap may reach at its deepest level (its net
 /// then takes `17·2^20·size_of::<R>()` bytes: 142 MB in f64).

@@ -8,6 +8,51 @@
 //! As in OpenSubdiv's Far, topology is analysed once ([`Topology`], then a
 //! surface plan) and positions flow through a separate, allocation-free
 //! evaluation that a caller repeats when vertices move.
+//!
+//! # Example
+//!
+//! The smooth surface of a cube: its eight corners are extraordinary points
+//! of valence 3, so it becomes eight EG caps (docs/math/eg.md) whose ring
+//! patches a [`SurfaceSink`] receives.
+//!
+//! ```
+//! use capdiv_mesh::{
+//!     CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme,
+//!     SurfacePlan, SurfaceSink,
+//! };
+//!
+//! let vertices = vec![
+//!     [-1.0, -1.0, -1.0], [1.0, -1.0, -1.0], [1.0, 1.0, -1.0], [-1.0, 1.0, -1.0],
+//!     [-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [1.0, 1.0, 1.0], [-1.0, 1.0, 1.0],
+//! ];
+//! let faces = vec![
+//!     vec![0, 3, 2, 1], vec![4, 5, 6, 7], vec![0, 1, 5, 4],
+//!     vec![1, 2, 6, 5], vec![2, 3, 7, 6], vec![3, 0, 4, 7],
+//! ];
+//! let mesh = MeshInput::new(vertices.clone(), faces);
+//!
+//! // Topology once: which faces are regular patches, which vertices caps.
+//! let plan = SurfacePlan::for_mesh(&mesh, PlanOptions { depth: 3, ..Default::default() })?;
+//!
+//! #[derive(Default)]
+//! struct Count { eg_patches: usize, caps: Vec<(Scheme, usize)> }
+//! impl SurfaceSink<f64> for Count {
+//!     fn patch(&mut self, p: &PatchRecord<f64>) {
+//!         self.eg_patches += usize::from(p.kind == PatchKind::Eg);
+//!     }
+//!     fn cap(&mut self, c: &CapRecord<f64>) {
+//!         self.caps.push((c.scheme, c.valence));
+//!     }
+//! }
+//!
+//! // Positions through the plan, as often as the vertices move.
+//! let mut evaluator = Evaluator::<f64>::new(&plan).unwrap();
+//! let mut sink = Count::default();
+//! evaluator.evaluate(&plan, &vertices, &mut sink).unwrap();
+//! assert_eq!(sink.caps, vec![(Scheme::Eg, 3); 8]);
+//! assert!(sink.eg_patches > 0);
+//! # Ok::<(), capdiv_mesh::MeshError>(())
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

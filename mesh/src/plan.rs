@@ -9,11 +9,11 @@
 //!    a grid, phantom points at a boundary) is a uniform bicubic B-spline
 //!    patch;
 //! 2. a polar configuration (a fan of triangles ringed by three rings of
-//!    regular quads, spec C2PS.md §1) is a C²PS cap over its triangles and
+//!    regular quads, docs/math/c2ps.md §1) is a C²PS cap over its triangles and
 //!    the quads between links 1 and 2 (its level-0 ring and outer region are
 //!    the regular faces around it);
 //! 3. an extraordinary point (interior, valence n ≠ 4, quads around, 1-ring
-//!    regular: its c-net exists, spec EG.md §1) is an EG cap for n = 3, 5 and
+//!    regular: its c-net exists, docs/math/eg.md §1) is an EG cap for n = 3, 5 and
 //!    for n = 6..10 with a rule table, else a Catmull-Clark cap, over its n
 //!    faces;
 //! 4. in a mesh without tags, when a reason a face has no patch can be
@@ -53,9 +53,9 @@ pub const MAX_STEPS: u32 = 2;
 /// The cap scheme at a vertex.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Scheme {
-    /// C²PS (spec C2PS.md).
+    /// C²PS (docs/math/c2ps.md).
     C2ps,
-    /// Evolving Guide (spec EG.md).
+    /// Evolving Guide (docs/math/eg.md).
     Eg,
     /// Catmull-Clark.
     CatmullClark,

@@ -1,7 +1,7 @@
 //! The combined refinement step: one global Catmull-Clark (CC) step, except at
-//! polar vertices, where the C²PS step (spec C2PS.md §2, first-step variant
+//! polar vertices, where the C²PS step (docs/math/c2ps.md §2, first-step variant
 //! "Uniform") gives the new pole, new link 1 and new link 2. New links ≥ 3 of
-//! C²PS are plain CC (spec §2: uniform bi-3 refinement), so they come out of
+//! C²PS are plain CC (docs/math/c2ps.md §2: uniform bi-3 refinement), so they come out of
 //! the CC rules unchanged.
 //!
 //! Topology is computed once; every refined vertex is a fixed linear

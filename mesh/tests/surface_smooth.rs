@@ -12,7 +12,7 @@
 //! B-spline/B-spline (one uniform bicubic B-spline surface over the mesh);
 //! C²PS ring/ring and ring/surround (each ring is the uniform bicubic
 //! B-spline of the level's links 1..5, the level-0 ring being the regular
-//! faces', spec C2PS.md §5); EG ring/ring and ring/surround (spec EG.md §9:
+//! faces', docs/math/c2ps.md §5); EG ring/ring and ring/surround (docs/math/eg.md §9:
 //! the rings are C² with each other and with the bicubic surround);
 //! Catmull-Clark ring patches are uniform bicubic B-spline patches of the
 //! refined grid, so C² across their edges too (with each other and with the

@@ -822,7 +822,7 @@ fn c2ps_cap_rings_weld_into_a_disk() {
 }
 
 /// A real EG cap from the kernel: per step and sector 3 bi-4 patches over the
-/// L between the old hole `[0,1]²` and the new `[0,½]²` (spec EG.md §9): patch
+/// L between the old hole `[0,1]²` and the new `[0,½]²` (docs/math/eg.md §9): patch
 /// `3s` over `[½,1]×[0,½]` has its edge `u = 0`, patch `3s+1` over
 /// `[0,½]×[½,1]` its edge `v = 0` on the new hole — against two patches of
 /// the next ring, or, after the last step, fanned to the limit point `c0`.

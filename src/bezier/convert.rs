@@ -1,4 +1,4 @@
-//! Uniform cubic B-spline → Bézier conversion (spec C2PS.md §5).
+//! Uniform cubic B-spline → Bézier conversion (docs/math/c2ps.md §5).
 
 use crate::point::Point3;
 use crate::real::Real;

@@ -2,10 +2,10 @@
 //! surface at one point, and what follows from them exactly: unit normal,
 //! Gaussian, mean and principal curvatures ([`SurfaceGeometry`]).
 //!
-//! One formula serves the pole of a C²PS cap (spec C2PS.md §4: the jet
+//! One formula serves the pole of a C²PS cap (docs/math/c2ps.md §4: the jet
 //! `p0 + p1 x + p2 y + p3 (x²+y²) + p4 (x²−y²) + p5 (2xy)` has
 //! `x_u = p1`, `x_v = p2`, `x_uu = 2(p3+p4)`, `x_uv = 2 p5`, `x_vv = 2(p3−p4)`)
-//! and every point of a Bézier ring patch (C2PS.md §5, EG.md §9), whose
+//! and every point of a Bézier ring patch (docs/math/c2ps.md §5, docs/math/eg.md §9), whose
 //! partials [`TensorPatch::jet`] computes by de Casteljau's algorithm.
 //!
 //! Fundamental forms: `E = x_u·x_u`, `F = x_u·x_v`, `G = x_v·x_v`;

@@ -1,7 +1,7 @@
 //! Tensor-product Bézier patches: the output form of both schemes.
 //!
-//! C²PS rings are bicubic (`K = 4` control points per direction, spec C2PS.md
-//! §5), EG rings bi-quartic (`K = 5`, spec EG.md §9). One type and one
+//! C²PS rings are bicubic (`K = 4` control points per direction, docs/math/c2ps.md
+//! §5), EG rings bi-quartic (`K = 5`, docs/math/eg.md §9). One type and one
 //! evaluator serve both: [`TensorPatch`], compiled once per `K`.
 
 pub mod convert;

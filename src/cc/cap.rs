@@ -3,7 +3,7 @@
 //! ring of bicubic patches each step emits.
 //!
 //! Layout. Per sector the cap keeps the *extended* ring: the nodes
-//! `(x, y)`, `x ∈ 1..=3`, `y ∈ 0..=3`, of that sector's frame (spec EG.md §1)
+//! `(x, y)`, `x ∈ 1..=3`, `y ∈ 0..=3`, of that sector's frame (docs/math/eg.md §1)
 //! at index `(x − 1) + 3y` (12 per sector, sector `s` at `12s`). Its part with
 //! `x, y ≤ 2` is the c-net of the current level; the nodes at `x = 3` or
 //! `y = 3` (set by every step from the previous c-net, see [`super::refine`])
@@ -22,7 +22,7 @@ use crate::real::Real;
 pub const EXT_SECTOR: usize = 12;
 /// Patches per sector and ring.
 pub const PATCHES_PER_SECTOR: usize = 3;
-/// Nodes per sector of the input c-net (spec EG.md §1).
+/// Nodes per sector of the input c-net (docs/math/eg.md §1).
 const C_SECTOR: usize = 6;
 /// Where the §1 order `(1,0) (2,0) (1,1) (2,1) (1,2) (2,2)` lands in the
 /// extended layout `(x − 1) + 3y`.
@@ -248,7 +248,7 @@ impl<'s, R: Real> CcCap<'s, R> {
     }
 
     /// Patch `k` of the last step's ring, in the EG convention
-    /// ([`crate::eg::EgSubdivision::ring_patch`], spec EG.md §9): sector
+    /// ([`crate::eg::EgSubdivision::ring_patch`], docs/math/eg.md §9): sector
     /// `k / 3`, piece `k % 3` (0: `[½,1]×[0,½]`, 1: `[0,½]×[½,1]`, 2: `[½,1]²`
     /// of that sector, in level-0 c-units × 2^−(level−1)); `u` along `x`, `v`
     /// along `y`, so `∂u × ∂v` has the same orientation in every sector.

@@ -1,7 +1,7 @@
 //! Catmull-Clark caps (Catmull & Clark 1978): the baseline scheme EG is
 //! compared with, and the fallback for valences EG has no rule for.
 //!
-//! A [`CcCap`] holds the c-net of an extraordinary vertex (spec EG.md §1:
+//! A [`CcCap`] holds the c-net of an extraordinary vertex (docs/math/eg.md §1:
 //! center `e` of valence `n ≥ 3`, 6 nodes per sector) in storage the caller
 //! provides ([`CcCap::storage_len`] points), refines it by Catmull-Clark steps
 //! and emits each level's ring of `3n` bicubic Bézier patches, in exactly the

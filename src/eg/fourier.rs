@@ -1,6 +1,6 @@
-//! [`FourierRule`]: an EG step (spec EG.md §5, §6) with rule (7) factored
+//! [`FourierRule`]: an EG step (docs/math/eg.md §5, §6) with rule (7) factored
 //! through the discrete Fourier transform over the sectors — the same linear
-//! map as the dense sum of [`super::refine`], in about half the operations.
+//! map as the dense sum of the `refine` module, in about half the operations.
 //!
 //! Rule (7) is a cyclic correlation over the sectors: per inner node `o = hk`
 //! and node `i = ij`, `y_s = Σ_r a^r x_{s+r}` with `x = d − c0`, `y = d̃ − c0`

@@ -1,4 +1,4 @@
-//! Compile-time index tables: where every stencil of spec EG.md §3, §5 and §9
+//! Compile-time index tables: where every stencil of docs/math/eg.md §3, §5 and §9
 //! reads, in the frame of one sector.
 //!
 //! Positions are integer lattice coordinates of one sector's frame (§1, §2):

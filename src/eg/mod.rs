@@ -1,4 +1,4 @@
-//! EG — Evolving Guide subdivision (spec `EG.md`, Karčiauskas & Peters): bi-4
+//! EG — Evolving Guide subdivision (`docs/math/eg.md`, Karčiauskas & Peters): bi-4
 //! C² caps around an extraordinary Catmull-Clark node of valence 3..=10.
 //!
 //! Data flows one way:

@@ -1,4 +1,4 @@
-//! The two input nets of EG (spec EG.md §1, §2) in fixed capacity, and the
+//! The two input nets of EG (docs/math/eg.md §1, §2) in fixed capacity, and the
 //! conversions between them: degree raising R (§3) and the limit point `c0`
 //! (§4, formulas (3) and (4)).
 //!

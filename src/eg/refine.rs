@@ -1,4 +1,4 @@
-//! One EG step `d → d̃` (spec EG.md §5, §6): the 6 outer new nodes of every
+//! One EG step `d → d̃` (docs/math/eg.md §5, §6): the 6 outer new nodes of every
 //! sector by the regular bi-4 rules, the 6 inner ones by the EG rule (7),
 //! `c0` unchanged. Written out of place (`old` → `out`, both fixed-size nets).
 

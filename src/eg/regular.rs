@@ -1,4 +1,4 @@
-//! Valence 4 (spec EG.md §7: "n = 4 is regular"): no EG rule; the cap of a
+//! Valence 4 (docs/math/eg.md §7: "n = 4 is regular"): no EG rule; the cap of a
 //! regular c-net is its 2×2 bicubic patches around the center.
 
 use super::layout::CAP4;

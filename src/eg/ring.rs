@@ -1,4 +1,4 @@
-//! The ring of bi-4 patches one step emits (spec EG.md §9).
+//! The ring of bi-4 patches one step emits (docs/math/eg.md §9).
 //!
 //! Step m → m+1 emits, per sector, 3 bi-4 patches over the L-shape between the
 //! old and the new hole: patch `3s + 0` over `[½,1]×[0,½]`, `3s + 1` over

@@ -1,4 +1,4 @@
-//! EG rule tables (spec EG.md §6, §7): the five listed arrays, their expansion
+//! EG rule tables (docs/math/eg.md §6, §7): the five listed arrays, their expansion
 //! by the §6 symmetries, and the checks a caller's table must pass.
 
 use super::net::check_valence;

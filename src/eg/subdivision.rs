@@ -11,7 +11,7 @@ use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
 
-/// An EG subdivision in progress (spec EG.md §5–§9).
+/// An EG subdivision in progress (docs/math/eg.md §5–§9).
 ///
 /// Memory: two [`DNet`]s (the current one and the previous one, which the
 /// last ring needs, §9) and a borrowed table, independent of the valence

@@ -1,4 +1,4 @@
-//! The EG rule arrays of spec EG.md §7, exactly as the spec lists them.
+//! The EG rule arrays of docs/math/eg.md §7, exactly as the spec lists them.
 //!
 //! Integers scaled by 10⁵ (they *are* the rule, not an approximation). Columns
 //! `00 10 20 30 01 11 21 31 02 12 22 32` (node index `i + 4j`), one row per

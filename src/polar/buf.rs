@@ -1,4 +1,4 @@
-//! `PolarNetBuf`: a polar configuration (spec C2PS.md §1) in caller-provided
+//! `PolarNetBuf`: a polar configuration (docs/math/c2ps.md §1) in caller-provided
 //! storage — [`PolarNet`]'s operations, results and errors with a capacity
 //! chosen at run time.
 //!
@@ -238,15 +238,10 @@ impl<'s, R: Real> PolarNetBuf<'s, R> {
     }
 
     /// One RTS step, as [`PolarNet::rts_step`]: valence and level unchanged,
-    /// the links held grow as for C²PS; a net the step could overflow is left
-    /// unchanged.
-    pub fn rts_step(&mut self) {
-        let _ = self.try_rts_step();
-    }
-
-    /// [`Self::rts_step`], reporting [`Error::NonFinite`] as
-    /// [`PolarNet::try_rts_step`] does; the net is then unchanged.
-    pub fn try_rts_step(&mut self) -> Result<(), Error> {
+    /// the links held grow as for C²PS. [`Error::NonFinite`] when the step
+    /// could overflow (as [`PolarNet::rts_step`]); the net is then unchanged.
+    /// On an [`Self::empty`] net: `Ok`, nothing done.
+    pub fn rts_step(&mut self) -> Result<(), Error> {
         if self.held < 2 {
             return Ok(()); // an empty net: nothing to refine
         }

@@ -1,4 +1,4 @@
-//! The five Fourier sums of the 1-link (spec C2PS.md §2):
+//! The five Fourier sums of the 1-link (docs/math/c2ps.md §2):
 //! `A = mean q1[h]`, `C_k = mean c(kh/n) q1[h]`, `S_k = mean s(kh/n) q1[h]`, k = 1, 2.
 //!
 //! The sums run over up to `CAP` terms (8192 and more at depth 8). Plain

@@ -1,5 +1,5 @@
 //! `PoleJet`: the eigencoefficients `p0..p5` at the pole and what follows from
-//! them (spec C2PS.md §4): limit point, unit normal, curvatures.
+//! them (docs/math/c2ps.md §4): limit point, unit normal, curvatures.
 //!
 //! Normalisation (the paper's Table 1, not its mistyped eq. (27)):
 //! `p0 = 2/3 q00 + 1/3 A`, `p1 = 2 C1`, `p2 = 2 S1`, `p3 = A − q00`,

@@ -1,4 +1,4 @@
-//! C²PS — bi-3 C² polar subdivision (spec `C2PS.md`).
+//! C²PS — bi-3 C² polar subdivision (`docs/math/c2ps.md`).
 //!
 //! Data flows one way: a [`PolarNet`] (or a [`PolarNetBuf`], the same net in
 //! caller-provided storage) is built and validated once, refined in

@@ -1,4 +1,4 @@
-//! `PolarNet`: a polar configuration (spec C2PS.md §1) in fixed capacity.
+//! `PolarNet`: a polar configuration (docs/math/c2ps.md §1) in fixed capacity.
 //!
 //! The pole and links 1..5 are stored as heapless ring buffers of capacity `CAP`
 //! (points `q[i][j]`, `j` taken mod the valence). `CAP = n0·2^max_depth` fixes
@@ -17,7 +17,7 @@ use heapless::Vec;
 /// Links stored by a net: 1..5, what one surface ring needs (§5).
 pub const MAX_STORED_LINKS: usize = 5;
 
-/// How the first C²PS step computes the refined 2-link (spec §2).
+/// How the first C²PS step computes the refined 2-link (docs/math/c2ps.md §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum FirstStep {

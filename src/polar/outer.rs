@@ -1,4 +1,4 @@
-//! The level-0 outer region (spec C2PS.md §5). The spec counts the pole as
+//! The level-0 outer region (docs/math/c2ps.md §5). The spec counts the pole as
 //! link 0, so its `L` is the number of links plus one: with `K = L−1 ≥ 6` links
 //! the level-0 configuration directly defines the regular bicubic surface
 //! between the level-0 ring and the last links, `r ∈ [4, K−1]`, without

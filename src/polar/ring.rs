@@ -1,5 +1,5 @@
 //! The surface ring of the current level as bicubic Bézier patches (spec
-//! C2PS.md §5).
+//! docs/math/c2ps.md §5).
 //!
 //! The level-m ring is the uniform bicubic B-spline with control rows = links
 //! 1..5 and `N` periodic columns, over `r ∈ [2, 4]` (level-m link units): two

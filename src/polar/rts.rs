@@ -1,4 +1,4 @@
-//! One RTS step (spec C2PS.md §3): the C²PS rules with the valence kept, no
+//! One RTS step (docs/math/c2ps.md §3): the C²PS rules with the valence kept, no
 //! periodic refinement (`q̃ = q`) and `τ = j/n`. In place, O(n).
 
 use super::fourier::Fourier;
@@ -12,16 +12,12 @@ use crate::real::Real;
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// One RTS step. Valence and level are unchanged; the links held grow as
     /// for C²PS (old links up to `K` give new links up to `2K−1`, at most 5).
-    /// A net the step could overflow (a coordinate of the pole or links 1..3
-    /// above `MAX/(16·N)`) is left unchanged: [`Self::try_rts_step`] reports it.
-    pub fn rts_step(&mut self) {
-        let _ = self.try_rts_step();
-    }
-
-    /// [`Self::rts_step`], reporting [`Error::NonFinite`] when the step could
-    /// overflow (as [`Self::step`]); the net is then unchanged. On an empty
-    /// net: `Ok`, nothing done.
-    pub fn try_rts_step(&mut self) -> Result<(), Error> {
+    ///
+    /// [`Error::NonFinite`] when a coordinate of the pole or links 1..3
+    /// exceeds `MAX/(16·N)` in magnitude (the step could overflow, as for
+    /// [`Self::step`]); the net is then unchanged. On an [`Self::empty`] net:
+    /// `Ok`, nothing done.
+    pub fn rts_step(&mut self) -> Result<(), Error> {
         if self.held < 2 {
             return Ok(()); // an empty net: nothing to refine
         }

@@ -1,4 +1,4 @@
-//! One C²PS step, level m → m+1, valence n → 2n (spec C2PS.md §2), in place.
+//! One C²PS step, level m → m+1, valence n → 2n (docs/math/c2ps.md §2), in place.
 //!
 //! O(n): the Fourier sums of the old 1-link are taken once, then every new
 //! point is a fixed combination of them and of the periodic refinements of old
@@ -22,7 +22,7 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// [`Error::CapacityExceeded`] when `2N > CAP`, [`Error::NotEnoughLinks`]
     /// on an [`PolarNet::empty`] net, [`Error::NonFinite`] when a coordinate
     /// of the pole or links 1..3 exceeds `MAX/(16·N)` in magnitude (the step
-    /// could overflow, see [`step_fits`]); the net is then unchanged.
+    /// could overflow, see `step_fits`); the net is then unchanged.
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
         let n = self.valence();
         check_step(self.held, n, CAP)?;

@@ -1,6 +1,6 @@
 //! Streaming C²PS: the ring patches of levels `0..=M` and the pole jet of a
 //! polar configuration in one angular sweep, with state of `O(M)` points —
-//! no level is ever stored whole (spec C2PS.md §2, §4, §5).
+//! no level is ever stored whole (docs/math/c2ps.md §2, §4, §5).
 //!
 //! A [`PolarNet`] holds whole levels (`17·CAP` scalars, `CAP = n·2^M`). But a
 //! level-`m` column depends only on three columns of level `m−1` (the
@@ -291,7 +291,7 @@ fn fits<R: Real, L: AsRef<[[R; 3]]>>(pole: &[R; 3], links: &[L], n: usize) -> Re
 /// path's Fourier sums).
 const BLOCK: usize = 32;
 
-/// The pole and the Fourier sums of the level-0 1-link (spec §2), roots
+/// The pole and the Fourier sums of the level-0 1-link (docs/math/c2ps.md §2), roots
 /// `ω^h`, `ω^{2h}` by repeated squaring in `f64`: plain sums within blocks of
 /// [`BLOCK`] terms, Kahan-compensated across blocks.
 fn level0_sums<R: Real>(pole: [R; 3], link: &[[R; 3]], w: (f64, f64)) -> Sums<R> {
@@ -344,7 +344,7 @@ fn level0_sums<R: Real>(pole: [R; 3], link: &[[R; 3]], w: (f64, f64)) -> Sums<R>
     }
 }
 
-/// The eigencoefficients `p0..p5` of level 0 (spec §4, the paper's Table 1
+/// The eigencoefficients `p0..p5` of level 0 (docs/math/c2ps.md §4, the paper's Table 1
 /// normalisation), as [`PoleJet::of`] computes them.
 fn jet_of<R: Real>(f: &Sums<R>) -> PoleJet<R> {
     let two = R::from_f64(2.0);
@@ -364,7 +364,7 @@ fn jet_of<R: Real>(f: &Sums<R>) -> PoleJet<R> {
 /// A running sweep: an iterator over the ring patches of levels
 /// `from_level..=depth` (levels whose configuration holds links 1..5 only:
 /// from level 0 with 5 or more input links, level 1 with 3 or 4, level 2
-/// with 2 — spec §2, as [`PolarNet::ring_patches`]).
+/// with 2 — docs/math/c2ps.md §2, as [`PolarNet::ring_patches`]).
 ///
 /// **Order.** The sweep pulls columns through the levels depth-first. Within
 /// a level, patches arrive by increasing column `j = 0..N−1`, both spans of a
@@ -388,7 +388,7 @@ pub struct Sweep<'a, R, L, const D: usize> {
 }
 
 impl<R: Real, L: AsRef<[[R; 3]]>, const D: usize> Sweep<'_, R, L, D> {
-    /// The pole jet `p0..p5` of the configuration (spec §4, level-0
+    /// The pole jet `p0..p5` of the configuration (docs/math/c2ps.md §4, level-0
     /// normalisation: [`PoleJet::of`] of the level-0 net). At level `m` the
     /// coefficients are `λ_k^m p_k` (Lemma 5).
     #[inline]
@@ -481,7 +481,7 @@ impl<R: Real, L: AsRef<[[R; 3]]>, const D: usize> Sweep<'_, R, L, D> {
         self.pending = if last { None } else { Some((m, i, span + 1)) };
         let lv = self.state.level(m)?;
         // B-spline control points: links span+1..span+4 at columns j−1..j+2,
-        // i.e. column numbers i−3..i (spec §5).
+        // i.e. column numbers i−3..i (docs/math/c2ps.md §5).
         let mut d = [[Point3::ZERO; 4]; 4];
         for (k, row) in d.iter_mut().enumerate() {
             for (l, p) in row.iter_mut().enumerate() {

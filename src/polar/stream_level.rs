@@ -1,6 +1,6 @@
 //! One level of the streaming sweep ([`super::stream`]): a window of the last
 //! [`WINDOW`] columns of level `m` and the level's closed-form data (spec
-//! C2PS.md §2, §4).
+//! docs/math/c2ps.md §2, §4).
 //!
 //! A *column* `k` of level `m` is the five points `q[1..=5][k]` plus the root
 //! `(c, s)(k/N)` its rules need (the doubled angle's follows from it). Columns are produced in
@@ -44,7 +44,7 @@ impl<R: Real> Column<R> {
 }
 
 /// The pole and the Fourier sums `A, C1, S1, C2, S2` of a level's 1-link
-/// (spec §2): what the next level is computed from.
+/// (docs/math/c2ps.md §2): what the next level is computed from.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Sums<R> {
     pub pole: Point3<R>,
@@ -65,7 +65,7 @@ impl<R: Real> Sums<R> {
         s2: Point3([R::ZERO; 3]),
     };
 
-    /// The next level's pole and sums (spec §2 rule (1) for the pole; §4 eq.
+    /// The next level's pole and sums (docs/math/c2ps.md §2 rule (1) for the pole; §4 eq.
     /// (30) / Lemma 5 for the 1-link's sums).
     pub(crate) fn next(&self) -> Self {
         Sums {
@@ -160,8 +160,8 @@ pub(crate) fn power(w: (f64, f64), mut k: usize) -> (f64, f64) {
 }
 
 /// Computes column number `i` of level `hi` from the level below, `lo`
-/// (which must have produced columns `⌊i/2⌋ … ⌊i/2⌋+2`), the spec's §2 rules
-/// with the sums of `lo`. `uniform_first`: this is level 1 and the first step
+/// (which must have produced columns `⌊i/2⌋ … ⌊i/2⌋+2`), by the rules of
+/// docs/math/c2ps.md §2 with the sums of `lo`. `uniform_first`: this is level 1 and the first step
 /// uses the §2 first-step variant.
 pub(crate) fn next_column<R: Real>(
     lo: &Level<R>,

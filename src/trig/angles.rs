@@ -1,11 +1,11 @@
 //! [`UnitRoots`]: how each scalar type derives the roots of unity the C²PS
-//! rules need (spec C2PS.md §2, §4: `c(j/N)`, `s(j/N)`).
+//! rules need (docs/math/c2ps.md §2, §4: `c(j/N)`, `s(j/N)`).
 //!
 //! - `f64`: from the compile-time table [`super::ODD_ROOTS`] by a product
 //!   chain (base ring) and half-angle steps ([`super::primitive_root`]), all
 //!   in `f64`.
 //! - `f32`: from the angle `2π/n` in double-single arithmetic
-//!   ([`super::double_single`], ~48 bits) by Taylor series, with `f32`
+//!   (`double_single`, ~48 bits) by Taylor series, with `f32`
 //!   operations only — no soft-float `f64` on an FPU-less or single-precision
 //!   chip — then rounded to `f32`. Over every supported odd part and 30
 //!   doublings the rounded values equal the `f64` route's rounded to `f32`,

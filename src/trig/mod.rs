@@ -1,7 +1,7 @@
 //! Angles for the refinement: a read-only table of primitive roots of unity,
 //! built by const evaluation, and a ring of the current valence's roots.
 //!
-//! C²PS (spec C2PS.md §2, §4) needs `c(j/N) = cos(2πj/N)` and `s(j/N)` for the
+//! C²PS (docs/math/c2ps.md §2, §4) needs `c(j/N) = cos(2πj/N)` and `s(j/N)` for the
 //! valence `N = n·2^m` of every level. No trig function is called at run time:
 //!
 //! - [`table`] holds `cos, sin (2π/o)` for every odd `o ≤ MAX_ODD_PART`,

@@ -1,4 +1,4 @@
-//! Shared helpers of the EG kernel tests (spec EG.md): random nets, the §1
+//! Shared helpers of the EG kernel tests (docs/math/eg.md): random nets, the §1
 //! frame change written independently of the kernel, and a second-order jet
 //! evaluator for Bézier patches (the kernel's evaluator stops at first order).
 #![allow(dead_code)]
@@ -24,7 +24,7 @@ impl Rng {
     }
 }
 
-/// An extended c-net (spec EG.md §7 of the paper: "a c-net extended by one ring
+/// An extended c-net (the EG paper's §7: "a c-net extended by one ring
 /// of quads"): center and, per sector, the points `(x, y)`, `x ∈ 1..=3`,
 /// `y ∈ 0..=3`, stored `pts[s][x−1][y]`.
 #[derive(Clone, Debug)]
@@ -68,7 +68,7 @@ impl ExtNet {
     }
 
     /// Point `(x, y)` of sector `s`, any `x, y ∈ −3..=3` reachable by the §1
-    /// change of frame (independent re-implementation of spec §1).
+    /// change of frame (independent re-implementation of docs/math/eg.md §1).
     pub fn at(&self, s: isize, x: i32, y: i32) -> [f64; 3] {
         let (mut s, mut x, mut y) = (s, x, y);
         loop {

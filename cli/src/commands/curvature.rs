@@ -2,7 +2,7 @@
 //! curvature over samples of that ring, exact from the patches' derivatives
 //! (`TensorPatch::jet`, `SurfaceJet::geometry`), and the limit values at the
 //! centre where the scheme defines them (C²PS, RTS: the pole jet, spec
-//! C2PS.md §4; EG and Catmull-Clark: `null`, the reason on stderr).
+//! docs/math/c2ps.md §4; EG and Catmull-Clark: `null`, the reason on stderr).
 //!
 //! ```json
 //! {"scheme": "c2ps", "levels": [{"level": 0, "gaussian": [min, max], "mean": [min, max]}, ...],

@@ -1,6 +1,6 @@
 //! `capdiv demo`: refines the built-in samples ([`crate::samples`]) with C²PS
 //! (f64, first step uniform) and with EG (c-nets of valence 3 and 5, spec
-//! EG.md), writes `<name>.obj` (patches through the sample's depth,
+//! docs/math/eg.md), writes `<name>.obj` (patches through the sample's depth,
 //! tessellated), `<name>.png` (a shaded preview of that mesh, rings coloured
 //! by level) and `<name>.json` (the level-0 input, usable with the other
 //! commands) to the output directory, and prints a summary: limit point
@@ -85,7 +85,7 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
     let mut text = String::new();
     let _ = writeln!(
         text,
-        "capdiv demo: C2PS polar subdivision (spec C2PS.md), f64, first step 'uniform' (§6)"
+        "capdiv demo: C2PS polar subdivision (docs/math/c2ps.md), f64, first step 'uniform' (paper §6)"
     );
     let _ = writeln!(text, "writing to {}/\n", args.out.display());
     for sample in demo_samples() {
@@ -93,7 +93,7 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
     }
     let _ = writeln!(
         text,
-        "EG: Evolving Guide subdivision (spec EG.md) of c-nets, f64, built-in rules (§7)\n"
+        "EG: Evolving Guide subdivision (docs/math/eg.md) of c-nets, f64, built-in rules (§7)\n"
     );
     for sample in eg_samples() {
         one_eg(sample, &args.out, &mut text)?;

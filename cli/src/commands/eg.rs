@@ -1,4 +1,4 @@
-//! Shared steps of the commands on EG inputs (spec EG.md): the d-net of a
+//! Shared steps of the commands on EG inputs (docs/math/eg.md): the d-net of a
 //! `cnet` or `dnet` input in the working precision, and the subdivision with
 //! the built-in rule or a user table.
 //!

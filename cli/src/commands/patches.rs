@@ -2,7 +2,7 @@
 //! mesh or as a PNG preview. The patch set, its mesh and its OBJ are generic
 //! over the patch size `K` (bicubic C²PS, bi-quartic EG).
 //!
-//! **EG** (`cnet`/`dnet`, spec EG.md §9): the rings of steps 1..M, `3n`
+//! **EG** (`cnet`/`dnet`, docs/math/eg.md §9): the rings of steps 1..M, `3n`
 //! bi-4 patches each (`"degree": 4`, 25 points), `level` = the step that
 //! emitted the ring: ring `m` covers the L-shape between the holes
 //! `[0, 2^−(m−1)]²` and `[0, 2^−m]²` of every sector (level-0 c-units), patch
@@ -11,7 +11,7 @@
 //! outside the cap), so `--depth 0` prints `[]`; the hole `[0, 2^−M]²` around
 //! `c0` stays open.
 //!
-//! **C²PS** (`polar`, spec C2PS.md §5): bicubic patches from level 0.
+//! **C²PS** (`polar`, docs/math/c2ps.md §5): bicubic patches from level 0.
 //! Order: first the level-0 outer region (kernel `OuterRegion`, only when the
 //! input has 6 or more links; `level` 0), then the rings of levels 0, 1, …, M,
 //! each `2N` patches with `N = n·2^m` (span 0 columns 0..N, then span 1).
@@ -22,7 +22,7 @@
 //! not emitted, so `--depth 1` on a 2-link input prints no patch at all.
 //!
 //! **`--stream`** (polar inputs, JSON or OBJ): the rings come from the
-//! kernel's streaming sweep (`PolarStream`, spec C2PS.md §4 eq. (30)) and are
+//! kernel's streaming sweep (`PolarStream`, docs/math/c2ps.md §4 eq. (30)) and are
 //! written as they are computed, in the order above (one sweep per level and
 //! span), so memory does not grow with the depth: the sweep's state is
 //! fixed (depth ≤ [`STREAM_MAX_DEPTH`]) and nothing is collected. The patches
@@ -192,7 +192,7 @@ pub fn png_bytes<R: Scalar>(mesh: &Mesh<R>) -> Result<Vec<u8>, CliError> {
     })
 }
 
-/// The rings of steps 1..=`depth` of an EG input (spec EG.md §9), `3n`
+/// The rings of steps 1..=`depth` of an EG input (docs/math/eg.md §9), `3n`
 /// bi-4 patches each, with the user's table when given.
 pub fn collect_eg<R: Scalar>(
     name: &str,

@@ -1,9 +1,9 @@
 //! `capdiv pole`: the limit point at the center of the input.
 //!
 //! - `polar`: the eigencoefficients `p0..p5`, the limit point `p0`, the unit
-//!   normal and the curvatures at the pole (spec C2PS.md §4; kernel
+//!   normal and the curvatures at the pole (docs/math/c2ps.md §4; kernel
 //!   `PoleJet::of` and `PoleJet::geometry`);
-//! - `cnet`: `{"limit"}`, `c0` by formula (3) (spec EG.md §4, kernel
+//! - `cnet`: `{"limit"}`, `c0` by formula (3) (docs/math/eg.md §4, kernel
 //!   `CNet::limit`);
 //! - `dnet`: `{"limit"}`, its `c0` when given, else formula (4) (kernel
 //!   `DNet::fitted_limit`). `c0` is the same at every level (EG keeps it).
@@ -37,7 +37,7 @@ pub fn run(args: &PoleArgs) -> Result<Outcome, CliError> {
 }
 
 /// The limit point `c0` of a `cnet` (formula (3)) or `dnet` (given `c0`, else
-/// formula (4)) input (spec EG.md §4).
+/// formula (4)) input (docs/math/eg.md §4).
 pub fn eg_limit<R: Scalar>(name: &str, input: &Input) -> Result<EgPoleOutput<R>, CliError> {
     let limit = match input {
         Input::Cnet(c) => cnet::<R>(name, c)?.limit(),

@@ -1,5 +1,5 @@
-//! `capdiv refine`: M steps of C²PS (spec C2PS.md §2), RTS (§3) or EG
-//! (spec EG.md §5, §6); prints the level-M configuration in the input schema
+//! `capdiv refine`: M steps of C²PS (docs/math/c2ps.md §2), RTS (§3) or EG
+//! (docs/math/eg.md §5, §6); prints the level-M configuration in the input schema
 //! (EG: always as a `dnet`, with its `c0`).
 //!
 //! The scheme defaults to the input's kind: `polar` → C²PS, `cnet`/`dnet` →
@@ -87,7 +87,7 @@ pub fn run(args: &RefineArgs) -> Result<Outcome, CliError> {
     ))
 }
 
-/// The level-`steps` d-net of an EG input (spec EG.md §5, §6; `c0` fixed),
+/// The level-`steps` d-net of an EG input (docs/math/eg.md §5, §6; `c0` fixed),
 /// with the user's table when given. `steps = 0` without a table needs no
 /// rule: it prints the d-net (a c-net's degree raising, §3) for any valence
 /// 3..=10.
@@ -173,7 +173,7 @@ impl<R: Scalar> NetJob<R> for Job<'_, R> {
             match self.scheme {
                 Scheme::C2ps => net.step(self.first).map_err(kernel)?,
                 // Eg is refused by `refine` before the job starts.
-                Scheme::Rts | Scheme::Eg => net.rts_step(),
+                Scheme::Rts | Scheme::Eg => net.rts_step().map_err(kernel)?,
             }
         }
         Ok(PolarOutput::of(&net))

@@ -1,5 +1,5 @@
 //! `capdiv spectrum --valence N [--table FILE]`: the spectrum of the EG
-//! subdivision matrix `A_n` (spec EG.md §6, §8) — the way to check a rule
+//! subdivision matrix `A_n` (docs/math/eg.md §6, §8) — the way to check a rule
 //! table (e.g. one for n = 6..10 from the paper's appendix) against the
 //! paper's published λ and μ/λ² (§7, §8).
 //!
@@ -27,7 +27,7 @@
 //! - `mu_over_lambda2` = `|ν₃|/λ², |ν₄|/λ², |ν₅|/λ²`: the three eigenvalues
 //!   after the λ pair — for EG one single (Fourier mode 0, the `x² + y²`
 //!   part) and one double (modes 2 and n−2, or ±1 for n = 3: the `x² − y²`,
-//!   `xy` part), all real and positive. Spec §8's "μ/λ² (single)" and
+//!   `xy` part), all real and positive. docs/math/eg.md §8's "μ/λ² (single)" and
 //!   "(double)" are these; the paper's one published μ/λ² per valence is the
 //!   largest of the three (n = 3: 1.000157 single vs 0.998065 double, printed
 //!   as 1.00015; n = 5: 1.000160 vs 1.000118, printed as 1.00016).

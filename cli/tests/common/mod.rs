@@ -172,7 +172,7 @@ pub fn decode_png(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
     (info.width as usize, info.height as usize, buf)
 }
 
-/// A c-net of valence `n` (spec EG.md §1): node `(x, y)` of sector `s` near
+/// A c-net of valence `n` (docs/math/eg.md §1): node `(x, y)` of sector `s` near
 /// `x u_s + y u_{s+1}` in the plane (`u_s` the unit vector at angle 2πs/n),
 /// lifted by a bump, plus noise of size 0.1 so that nothing is symmetric.
 /// Returns `(center, sectors)` in the §1 order.
@@ -270,7 +270,7 @@ pub fn parse_obj(text: &str) -> Obj {
     obj
 }
 
-/// The §7 arrays of spec EG.md for n = 3, typed from the spec (A11, A22,
+/// The §7 arrays of docs/math/eg.md for n = 3, typed from the spec (A11, A22,
 /// A21, A31, A32).
 pub const SPEC_N3: [&[[i64; 12]]; 5] = [
     &[

@@ -103,7 +103,7 @@ fn mesh_of_json(vertices: Vec<[f64; 3]>, faces: &[Vec<i64>]) -> Result<MeshInput
 /// The open disk of a polar configuration: vertex 0 the pole, then link `k`
 /// point `j` at `1 + k·n + j`; triangles `(pole, l1[j], l1[j+1])`, quads
 /// `(lk[j], lk+1[j], lk+1[j+1], lk[j+1])` — counter-clockwise when the links
-/// are (spec C2PS.md §1).
+/// are (docs/math/c2ps.md §1).
 pub fn polar_disk(pole: [f64; 3], links: &[Vec<[f64; 3]>]) -> Result<MeshInput, String> {
     let n = links.first().map_or(0, Vec::len);
     if links.len() < 2 {
