@@ -1,9 +1,10 @@
 //! Output types (serialised with serde_json) and the all-or-nothing writers.
 //!
 //! Every command builds its whole output in memory first; nothing reaches
-//! stdout or the output file before the command has succeeded. Files are
-//! written to a temporary sibling and renamed into place, so a failure never
-//! leaves a partial file.
+//! stdout or the output file before the command has succeeded. A new or
+//! regular output file is written to a temporary sibling and renamed into
+//! place, so a failure never leaves a partial file; FIFOs, devices and the
+//! targets of links are written through ([`write_path`]).
 
 use crate::error::CliError;
 use crate::Scalar;
@@ -265,7 +266,7 @@ fn is_flat(rest: &[u8]) -> bool {
 pub enum Sink {
     /// Standard output.
     Stdout,
-    /// A file, replaced atomically.
+    /// A file path, written by [`write_path`].
     File(PathBuf),
 }
 
@@ -287,27 +288,139 @@ impl Sink {
                         message: e.to_string(),
                     })
             }
-            Sink::File(path) => write_atomic(path, bytes),
+            Sink::File(path) => write_path(path, bytes),
         }
     }
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it to
-/// `path`: readers see either no file or the whole file.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+/// How an output path is written, decided by what is at the path now.
+#[derive(Debug)]
+pub enum Target {
+    /// Write a temporary sibling of `path`, then rename it over `path`: the
+    /// path is absent (`permissions: None`) or a regular file (its
+    /// permissions, given to the new file).
+    Replace {
+        /// The file to replace (a link already resolved).
+        path: PathBuf,
+        /// The replaced file's permissions.
+        permissions: Option<std::fs::Permissions>,
+    },
+    /// Open `path` and write into it: a FIFO, a character device such as
+    /// `/dev/null`, a socket, or a dangling link (`create`: its target is
+    /// created).
+    Through {
+        /// The path as given.
+        path: PathBuf,
+        /// Create the file if missing (dangling links only).
+        create: bool,
+    },
+}
+
+impl Target {
+    /// Looks at `path` (not following a link at first):
+    ///
+    /// - absent path or regular file: [`Target::Replace`];
+    /// - symbolic link: the same rules applied to the file it points to
+    ///   (the link stays); a dangling link is [`Target::Through`], creating
+    ///   its target;
+    /// - a FIFO, device or socket: [`Target::Through`], never replaced;
+    /// - a directory: an error.
+    pub fn of(path: &Path) -> Result<Self, CliError> {
+        let io_err = |e: std::io::Error| CliError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        };
+        let meta = match std::fs::symlink_metadata(path) {
+            Ok(m) => m,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(Target::Replace {
+                    path: path.to_path_buf(),
+                    permissions: None,
+                })
+            }
+            Err(e) => return Err(io_err(e)),
+        };
+        let kind = meta.file_type();
+        if kind.is_symlink() {
+            return match std::fs::canonicalize(path) {
+                // Fully resolved: the target is not a link.
+                Ok(target) => Target::of(&target),
+                Err(_) => Ok(Target::Through {
+                    path: path.to_path_buf(),
+                    create: true,
+                }),
+            };
+        }
+        if kind.is_file() {
+            return Ok(Target::Replace {
+                path: path.to_path_buf(),
+                permissions: Some(meta.permissions()),
+            });
+        }
+        if kind.is_dir() {
+            return Err(io_err(std::io::Error::other("is a directory")));
+        }
+        Ok(Target::Through {
+            path: path.to_path_buf(),
+            create: false,
+        })
+    }
+
+    /// Opens a [`Target::Through`] path for writing.
+    pub fn open_through(path: &Path, create: bool) -> std::io::Result<std::fs::File> {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .truncate(true)
+            .create(create)
+            .open(path)
+    }
+}
+
+/// Writes `bytes` to `path` as a shell redirection would, but never leaving
+/// a partial regular file (the rules are [`Target::of`]'s).
+pub fn write_path(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    match Target::of(path)? {
+        Target::Replace { path, permissions } => write_atomic(&path, bytes, permissions),
+        Target::Through { path, create } => Target::open_through(&path, create)
+            .and_then(|mut f| f.write_all(bytes).and_then(|_| f.flush()))
+            .map_err(|e| CliError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            }),
+    }
+}
+
+/// The temporary sibling of `path` that [`write_atomic`] and streaming
+/// outputs write before the rename (`tag` tells them apart).
+pub fn temporary_sibling(path: &Path, tag: &str) -> PathBuf {
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(path.file_name().unwrap_or_default());
+    tmp_name.push(format!(".{}.{tag}tmp", std::process::id()));
+    path.with_file_name(tmp_name)
+}
+
+/// Writes `bytes` to a temporary file beside `path`, gives it `permissions`
+/// (those of the file it replaces), then renames it to `path`: readers see
+/// either the old file or the whole new one.
+pub fn write_atomic(
+    path: &Path,
+    bytes: &[u8],
+    permissions: Option<std::fs::Permissions>,
+) -> Result<(), CliError> {
     let io_err = |e: std::io::Error| CliError::Io {
         path: path.display().to_string(),
         message: e.to_string(),
     };
-    let name = path
-        .file_name()
-        .ok_or_else(|| io_err(std::io::Error::other("not a file name")))?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".{}.tmp", std::process::id()));
-    let tmp = path.with_file_name(tmp_name);
+    if path.file_name().is_none() {
+        return Err(io_err(std::io::Error::other("not a file name")));
+    }
+    let tmp = temporary_sibling(path, "");
     let result = std::fs::File::create(&tmp)
         .and_then(|mut f| f.write_all(bytes).and_then(|_| f.sync_all()))
+        .and_then(|_| match permissions {
+            Some(p) => std::fs::set_permissions(&tmp, p),
+            None => Ok(()),
+        })
         .and_then(|_| std::fs::rename(&tmp, path));
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);

@@ -22,7 +22,7 @@ use super::Outcome;
 use crate::args::DemoArgs;
 use crate::error::CliError;
 use crate::input::EgInput;
-use crate::output::{to_json, write_atomic, Sink};
+use crate::output::{to_json, write_path, Sink};
 use crate::samples::{demo_samples, eg_samples, EgSample, Sample};
 use capdiv::FirstStep;
 use capdiv_mesh::{samples, MeshInput};
@@ -271,17 +271,17 @@ fn one_mesh(
     let png = png_bytes(&render_mesh(&tess.mesh))?;
     let compute = start.elapsed();
     let obj_path = dir.join(format!("{name}.obj"));
-    write_atomic(&obj_path, obj.as_bytes())?;
+    write_path(&obj_path, obj.as_bytes())?;
     let png_path = dir.join(format!("{name}.png"));
-    write_atomic(&png_path, &png)?;
+    write_path(&png_path, &png)?;
     let json_path = dir.join(format!("{name}.json"));
     let mut input = serde_json::to_value(crate::input::MeshJson::of(mesh)).unwrap_or_default();
     if let Some(o) = input.as_object_mut() {
         o.insert("kind".into(), "mesh".into());
     }
-    write_atomic(&json_path, &to_json(&input, false))?;
+    write_path(&json_path, &to_json(&input, false))?;
     let summary_path = dir.join(format!("{name}.summary.json"));
-    write_atomic(&summary_path, &to_json(&surface.summary, true))?;
+    write_path(&summary_path, &to_json(&surface.summary, true))?;
     let total = start.elapsed();
 
     let s = &surface.summary;
@@ -353,15 +353,15 @@ fn write_files<T: serde::Serialize>(
     (vertices, quads): (usize, usize),
 ) -> Result<String, CliError> {
     let obj_path = dir.join(format!("{name}.obj"));
-    write_atomic(&obj_path, obj.as_bytes())?;
+    write_path(&obj_path, obj.as_bytes())?;
     let png_path = dir.join(format!("{name}.png"));
-    write_atomic(&png_path, png)?;
+    write_path(&png_path, png)?;
     let json_path = dir.join(format!("{name}.json"));
     let mut json_input = serde_json::to_value(input).unwrap_or_default();
     if let Some(obj) = json_input.as_object_mut() {
         obj.insert("kind".into(), kind.into());
     }
-    write_atomic(&json_path, &to_json(&json_input, false))?;
+    write_path(&json_path, &to_json(&json_input, false))?;
     Ok(format!(
         "{} ({vertices} vertices, {quads} quads), {}, {}",
         obj_path.display(),

@@ -39,7 +39,7 @@ use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
 use crate::mesh::Mesh;
 use crate::obj::to_obj;
-use crate::output::{indent, to_json, LeveledPatch, PatchOutput, Sink};
+use crate::output::{indent, temporary_sibling, to_json, LeveledPatch, PatchOutput, Sink, Target};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
 use crate::Scalar;
@@ -465,16 +465,20 @@ impl PatchWriter {
     }
 }
 
-/// Where `--stream` writes: standard output, or a file written aside and
-/// renamed over the target at the end (as `Sink::File` does in one piece).
+/// Where `--stream` writes: standard output; a new or regular file written
+/// aside and renamed over the target at the end (as `Sink::File` does in one
+/// piece); or a FIFO, device or dangling link written through
+/// ([`Target::of`]).
 enum StreamOut {
     Stdout(std::io::BufWriter<std::io::StdoutLock<'static>>),
     File {
         w: std::io::BufWriter<std::fs::File>,
         tmp: std::path::PathBuf,
         path: std::path::PathBuf,
+        permissions: Option<std::fs::Permissions>,
         committed: bool,
     },
+    Through(std::io::BufWriter<std::fs::File>),
 }
 
 impl StreamOut {
@@ -484,33 +488,44 @@ impl StreamOut {
                 std::io::stdout().lock(),
             )));
         };
-        let mut tmp_name = std::ffi::OsString::from(".");
-        tmp_name.push(path.file_name().unwrap_or_default());
-        tmp_name.push(format!(".{}.stream.tmp", std::process::id()));
-        let tmp = path.with_file_name(tmp_name);
-        let file = std::fs::File::create(&tmp).map_err(|e| CliError::Io {
+        let io_err = |e: std::io::Error| CliError::Io {
             path: path.display().to_string(),
             message: e.to_string(),
-        })?;
-        Ok(StreamOut::File {
-            w: std::io::BufWriter::new(file),
-            tmp,
-            path: path.to_path_buf(),
-            committed: false,
-        })
+        };
+        match Target::of(path)? {
+            Target::Replace { path, permissions } => {
+                let tmp = temporary_sibling(&path, "stream.");
+                let file = std::fs::File::create(&tmp).map_err(io_err)?;
+                Ok(StreamOut::File {
+                    w: std::io::BufWriter::new(file),
+                    tmp,
+                    path,
+                    permissions,
+                    committed: false,
+                })
+            }
+            Target::Through { path, create } => Ok(StreamOut::Through(std::io::BufWriter::new(
+                Target::open_through(&path, create).map_err(io_err)?,
+            ))),
+        }
     }
 
     fn commit(&mut self) -> std::io::Result<()> {
         match self {
             StreamOut::Stdout(w) => w.flush(),
+            StreamOut::Through(w) => w.flush(),
             StreamOut::File {
                 w,
                 tmp,
                 path,
+                permissions,
                 committed,
             } => {
                 w.flush()?;
                 w.get_ref().sync_all()?;
+                if let Some(p) = permissions.take() {
+                    std::fs::set_permissions(&*tmp, p)?;
+                }
                 std::fs::rename(&*tmp, &*path)?;
                 *committed = true;
                 Ok(())
@@ -537,13 +552,13 @@ impl std::io::Write for StreamOut {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
         match self {
             StreamOut::Stdout(w) => w.write(buf),
-            StreamOut::File { w, .. } => w.write(buf),
+            StreamOut::File { w, .. } | StreamOut::Through(w) => w.write(buf),
         }
     }
     fn flush(&mut self) -> std::io::Result<()> {
         match self {
             StreamOut::Stdout(w) => w.flush(),
-            StreamOut::File { w, .. } => w.flush(),
+            StreamOut::File { w, .. } | StreamOut::Through(w) => w.flush(),
         }
     }
 }
