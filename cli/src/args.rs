@@ -286,8 +286,27 @@ pub enum PatchFormat {
     Json,
     /// A Wavefront OBJ mesh tessellated from the patches.
     Obj,
-    /// A shaded PNG preview of that mesh (binary: use with `-o`).
+    /// A shaded PNG preview of that mesh (binary: refused on a terminal,
+    /// use `-o` or a redirection).
     Png,
+}
+
+impl PatchFormat {
+    /// The format asked for, else the one `-o`'s extension names (`.json`,
+    /// `.obj`, `.png`, any case), else JSON.
+    pub fn resolve(explicit: Option<PatchFormat>, output: Option<&std::path::Path>) -> Self {
+        explicit
+            .or_else(|| {
+                let ext = output?.extension()?.to_str()?.to_ascii_lowercase();
+                match ext.as_str() {
+                    "json" => Some(PatchFormat::Json),
+                    "obj" => Some(PatchFormat::Obj),
+                    "png" => Some(PatchFormat::Png),
+                    _ => None,
+                }
+            })
+            .unwrap_or(PatchFormat::Json)
+    }
 }
 
 /// `capdiv surface` output format.
@@ -303,6 +322,26 @@ pub enum SurfaceFormat {
     Glb,
     /// The welded tessellation as glTF 2.0 JSON, buffer embedded (base64).
     Gltf,
+}
+
+impl SurfaceFormat {
+    /// The format asked for, else the one `-o`'s extension names (`.json`,
+    /// `.obj`, `.png`, `.glb`, `.gltf`, any case), else JSON.
+    pub fn resolve(explicit: Option<SurfaceFormat>, output: Option<&std::path::Path>) -> Self {
+        explicit
+            .or_else(|| {
+                let ext = output?.extension()?.to_str()?.to_ascii_lowercase();
+                match ext.as_str() {
+                    "json" => Some(SurfaceFormat::Json),
+                    "obj" => Some(SurfaceFormat::Obj),
+                    "png" => Some(SurfaceFormat::Png),
+                    "glb" => Some(SurfaceFormat::Glb),
+                    "gltf" => Some(SurfaceFormat::Gltf),
+                    _ => None,
+                }
+            })
+            .unwrap_or(SurfaceFormat::Json)
+    }
 }
 
 /// Where the input comes from and where the output goes.
@@ -358,6 +397,20 @@ pub struct PoleArgs {
     pub io: Io,
 }
 
+impl PatchesArgs {
+    /// The output format ([`PatchFormat::resolve`]).
+    pub fn format(&self) -> PatchFormat {
+        PatchFormat::resolve(self.format, self.io.output.as_deref())
+    }
+}
+
+impl SurfaceArgs {
+    /// The output format ([`SurfaceFormat::resolve`]).
+    pub fn format(&self) -> SurfaceFormat {
+        SurfaceFormat::resolve(self.format, self.output.as_deref())
+    }
+}
+
 /// `capdiv patches`.
 #[derive(Clone, Debug, Args)]
 pub struct PatchesArgs {
@@ -366,9 +419,10 @@ pub struct PatchesArgs {
     /// 1..M).
     #[arg(long, value_name = "M")]
     pub depth: u32,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = PatchFormat::Json)]
-    pub format: PatchFormat,
+    /// Output format [default: from the `-o` extension (.json, .obj, .png),
+    /// else json].
+    #[arg(long, value_enum)]
+    pub format: Option<PatchFormat>,
     /// OBJ and PNG: grid segments per patch side.
     #[arg(long, default_value_t = 4, value_name = "G",
           value_parser = clap::value_parser!(u32).range(1..=64))]
@@ -402,10 +456,15 @@ pub struct SurfaceArgs {
     #[arg(long, default_value_t = 6, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=16))]
     pub depth: u32,
-    /// Output format: JSON patches, caps and summary; a welded OBJ; a PNG;
-    /// glTF 2.0 (binary `glb`, or `gltf` with the buffer embedded).
-    #[arg(long, value_enum, default_value_t = SurfaceFormat::Json)]
-    pub format: SurfaceFormat,
+    /// Output format: `json` — `{"patches", "caps", "summary"}` (every
+    /// Bézier patch with its kind, level, face and domain; every cap with its
+    /// centre, scheme, valence, limit point and normal; the summary); `obj` —
+    /// the tessellated surface, welded, with normals; `png` — a shaded
+    /// preview; glTF 2.0 (binary `glb`, or `gltf` with the buffer embedded)
+    /// [default: from the `-o` extension, else json; on a terminal without
+    /// `-o`, only the summary is printed].
+    #[arg(long, value_enum)]
+    pub format: Option<SurfaceFormat>,
     /// OBJ, PNG, glb and gltf: grid segments per patch side.
     #[arg(long, default_value_t = 4, value_name = "G",
           value_parser = clap::value_parser!(u32).range(1..=64))]

@@ -65,6 +65,8 @@ pub enum CliError {
         source: String,
         /// The mesh crate's error.
         error: capdiv_mesh::MeshError,
+        /// How the input counts its vertices and faces.
+        naming: Naming,
     },
     /// Evaluating the surface of a mesh failed (capacity, kernel).
     Eval {
@@ -72,6 +74,8 @@ pub enum CliError {
         source: String,
         /// The evaluator's error.
         error: capdiv_mesh::EvalError,
+        /// How the input counts its vertices and faces.
+        naming: Naming,
     },
     /// A result coordinate overflowed the chosen precision.
     NonFiniteResult {
@@ -85,7 +89,85 @@ pub enum CliError {
     },
 }
 
+/// How messages name a mesh's vertices and faces: as the input file counts
+/// them.
+#[derive(Clone, Debug, Default)]
+pub enum Naming {
+    /// 0-based indices, as the JSON mesh schema writes them (`faces[0]` is
+    /// face 0).
+    #[default]
+    Indices,
+    /// 1-based, with the `v` or `f` line, as a Wavefront OBJ file counts them.
+    Obj(std::sync::Arc<capdiv_mesh::obj::ObjLines>),
+}
+
+impl Naming {
+    /// The naming of a mesh read from `text`: [`Naming::Obj`] unless the text
+    /// is JSON.
+    pub fn of_text(text: &str) -> Self {
+        if capdiv_mesh::obj::looks_like_json(text) {
+            Naming::Indices
+        } else {
+            Naming::Obj(std::sync::Arc::new(capdiv_mesh::obj::ObjLines::of(text)))
+        }
+    }
+
+    /// The number the input gives the vertex or face of 0-based `index`
+    /// (OBJ: `index + 1`).
+    pub fn number(&self, index: usize) -> usize {
+        match self {
+            Naming::Indices => index,
+            Naming::Obj(_) => index + 1,
+        }
+    }
+
+    fn names(&self) -> &dyn capdiv_mesh::error::Names {
+        match self {
+            Naming::Indices => &capdiv_mesh::error::Indices,
+            Naming::Obj(lines) => lines.as_ref(),
+        }
+    }
+}
+
 impl CliError {
+    /// A mesh error of `source`, named by 0-based indices until
+    /// [`CliError::named`].
+    pub fn mesh(source: &str, error: capdiv_mesh::MeshError) -> Self {
+        CliError::Mesh {
+            source: source.to_string(),
+            error,
+            naming: Naming::Indices,
+        }
+    }
+
+    /// An evaluation error of `source`, named by 0-based indices until
+    /// [`CliError::named`].
+    pub fn eval(source: &str, error: capdiv_mesh::EvalError) -> Self {
+        CliError::Eval {
+            source: source.to_string(),
+            error,
+            naming: Naming::Indices,
+        }
+    }
+
+    /// The error with its vertices and faces named by `naming` (mesh and
+    /// evaluation errors; others unchanged).
+    pub fn named(self, naming: &Naming) -> Self {
+        match self {
+            CliError::Mesh { source, error, .. } => CliError::Mesh {
+                source,
+                error,
+                naming: naming.clone(),
+            },
+            CliError::Eval { source, error, .. } => CliError::Eval {
+                source,
+                error,
+                naming: naming.clone(),
+            },
+            other => other,
+        }
+    }
+
     /// Attaches the input's name to a kernel error.
     pub fn kernel(source: &str, error: capdiv::Error) -> Self {
         CliError::Kernel {
@@ -114,8 +196,16 @@ impl fmt::Display for CliError {
                 "{what} exceeds the largest supported capacity {max} (use fewer steps)"
             ),
             CliError::Kernel { source, error } => write!(f, "{source}: {error}"),
-            CliError::Mesh { source, error } => write!(f, "{source}: {error}"),
-            CliError::Eval { source, error } => write!(f, "{source}: {error}"),
+            CliError::Mesh {
+                source,
+                error,
+                naming,
+            } => write!(f, "{source}: {}", error.describe(naming.names())),
+            CliError::Eval {
+                source,
+                error,
+                naming,
+            } => write!(f, "{source}: {}", error.describe(naming.names())),
             CliError::NonFiniteResult { source } => write!(
                 f,
                 "{source}: a result coordinate is not finite (input too large for the precision)"

@@ -159,14 +159,14 @@ impl MeshJson {
             let mut out = Vec::with_capacity(list.len());
             for &index in list {
                 if index < 0 || index as u64 >= nv as u64 || index > i64::from(u32::MAX) {
-                    return Err(CliError::Mesh {
-                        source: source.to_string(),
-                        error: capdiv_mesh::MeshError::IndexOutOfRange {
+                    return Err(CliError::mesh(
+                        source,
+                        capdiv_mesh::MeshError::IndexOutOfRange {
                             face,
                             index,
                             vertices: nv,
                         },
-                    });
+                    ));
                 }
                 out.push(index as u32);
             }

@@ -22,6 +22,7 @@
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
 //! - [`shape`]: every input under every scheme as ring patches with levels
 //!   and hole edges (`render`, `compare`, `curvature`);
+//! - [`text`]: counts and measured numbers in human-readable text;
 //! - [`error`]: the one-line error type (every failure exits with status 2).
 
 pub mod args;
@@ -38,12 +39,17 @@ pub mod render;
 pub mod samples;
 pub mod shape;
 pub mod table;
+pub mod text;
 
 pub use error::CliError;
 
 /// Coordinates the CLI computes in and prints: `f32` or `f64`.
 ///
-/// `Display` and `Serialize` of both print the shortest representation that
-/// round-trips, so JSON and OBJ output can be read back exactly.
-pub trait Scalar: capdiv::Real + serde::Serialize + core::fmt::Display {}
-impl<T: capdiv::Real + serde::Serialize + core::fmt::Display> Scalar for T {}
+/// `Display`, `LowerExp` and `Serialize` of both print the shortest
+/// representation that round-trips, so JSON and OBJ output can be read back
+/// exactly.
+pub trait Scalar:
+    capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp
+{
+}
+impl<T: capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp> Scalar for T {}

@@ -1,6 +1,7 @@
 //! Wavefront OBJ output of a [`Mesh`]: `v` (position) and `vn` (unit normal)
 //! lines, one pair per vertex, and `f a//a b//b c//c d//d` quads ordered
-//! counter-clockwise about the normals.
+//! counter-clockwise about the normals. Numbers as
+//! [`capdiv_mesh::tessellate::write_number`]: exact, in a compact form.
 //!
 //! Vertices on shared patch edges are duplicated (see [`crate::mesh`]): the
 //! mesh looks closed, but a tool that needs a welded mesh must merge by
@@ -8,6 +9,7 @@
 
 use crate::mesh::Mesh;
 use crate::Scalar;
+use capdiv_mesh::tessellate::write_point;
 use std::fmt::Write;
 
 /// OBJ text of a mesh, with `header` lines as `#` comments first.
@@ -17,10 +19,8 @@ pub fn to_obj<R: Scalar>(mesh: &Mesh<R>, header: &[String]) -> String {
         let _ = writeln!(text, "# {line}");
     }
     for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
-        let [x, y, z] = p.0;
-        let [a, b, c] = n.0;
-        let _ = writeln!(text, "v {x} {y} {z}");
-        let _ = writeln!(text, "vn {a} {b} {c}");
+        write_point(&mut text, "v", p.0);
+        write_point(&mut text, "vn", n.0);
     }
     for q in &mesh.quads {
         // OBJ indices are 1-based.

@@ -10,8 +10,24 @@ use crate::error::CliError;
 use crate::Scalar;
 use capdiv::{DNet, Point3, PolarNet, PoleGeometry, PoleJet, TensorPatch};
 use serde::Serialize;
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
+
+/// `true` for output that is not text: bytes that are not UTF-8 or hold a
+/// NUL byte. Every text output (JSON, OBJ, glTF JSON) is UTF-8 without NUL;
+/// a PNG's signature starts with the byte 0x89 (never UTF-8), a GLB's
+/// version field holds NUL bytes.
+pub fn is_binary(bytes: &[u8]) -> bool {
+    bytes.contains(&0) || std::str::from_utf8(bytes).is_err()
+}
+
+/// The refusal of binary output on a terminal, with the way out.
+fn binary_to_terminal(what: &str) -> CliError {
+    CliError::Usage(format!(
+        "refusing to write binary output (PNG, GLB) to a terminal ({what}): give -o FILE \
+         or redirect it (> FILE)"
+    ))
+}
 
 /// A polar configuration, the input schema (`kind: "polar"`).
 #[derive(Clone, Debug, Serialize)]
@@ -276,11 +292,15 @@ impl Sink {
         path.map_or(Sink::Stdout, Sink::File)
     }
 
-    /// Writes all of `bytes` at once.
+    /// Writes all of `bytes` at once. Binary output ([`is_binary`]) is
+    /// refused on a terminal, before anything is written.
     pub fn write(&self, bytes: &[u8]) -> Result<(), CliError> {
         match self {
             Sink::Stdout => {
                 let mut out = std::io::stdout().lock();
+                if is_binary(bytes) && out.is_terminal() {
+                    return Err(binary_to_terminal("standard output"));
+                }
                 out.write_all(bytes)
                     .and_then(|_| out.flush())
                     .map_err(|e| CliError::Io {
@@ -381,12 +401,17 @@ impl Target {
 pub fn write_path(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
     match Target::of(path)? {
         Target::Replace { path, permissions } => write_atomic(&path, bytes, permissions),
-        Target::Through { path, create } => Target::open_through(&path, create)
-            .and_then(|mut f| f.write_all(bytes).and_then(|_| f.flush()))
-            .map_err(|e| CliError::Io {
+        Target::Through { path, create } => {
+            let io_err = |e: std::io::Error| CliError::Io {
                 path: path.display().to_string(),
                 message: e.to_string(),
-            }),
+            };
+            let mut f = Target::open_through(&path, create).map_err(io_err)?;
+            if is_binary(bytes) && f.is_terminal() {
+                return Err(binary_to_terminal(&path.display().to_string()));
+            }
+            f.write_all(bytes).and_then(|_| f.flush()).map_err(io_err)
+        }
     }
 }
 

@@ -22,7 +22,7 @@ use crate::args::ShapeScheme;
 use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::commands::eg::{cnet, subdivision};
 use crate::commands::polar::Config;
-use crate::error::CliError;
+use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::tessellate::PatchGeometry;
@@ -374,10 +374,7 @@ fn mesh_shape(
     catmull_clark: bool,
     keep: Option<usize>,
 ) -> Result<Shape, CliError> {
-    let mesh_err = |error| CliError::Mesh {
-        source: name.to_string(),
-        error,
-    };
+    let mesh_err = |error| CliError::mesh(name, error);
     let plan = SurfacePlan::for_mesh(
         mesh,
         PlanOptions {
@@ -387,16 +384,10 @@ fn mesh_shape(
         },
     )
     .map_err(mesh_err)?;
-    let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::Eval {
-        source: name.to_string(),
-        error,
-    })?;
+    let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::eval(name, error))?;
     let mut out = Collect::default();
     ev.evaluate(&plan, &mesh.vertices, &mut out)
-        .map_err(|error| CliError::Eval {
-            source: name.to_string(),
-            error,
-        })?;
+        .map_err(|error| CliError::eval(name, error))?;
     let followed: Vec<u32> = match out.caps.iter().find(|c| c.vertex == Some(0)) {
         Some(c) if keep.is_some() => vec![c.index],
         _ => out.caps.iter().map(|c| c.index).collect(),
@@ -494,13 +485,14 @@ pub fn override_boundary(
 
 /// Reads any input: JSON of any kind (chosen by content), a Wavefront OBJ
 /// mesh, or `sample:NAME`, a built-in test net
-/// ([`crate::samples::shape_samples`]). Returns the display name with it.
-pub fn read_any(file: &str) -> Result<(String, Input), CliError> {
+/// ([`crate::samples::shape_samples`]). Returns the display name and how
+/// the input counts its vertices and faces with it.
+pub fn read_any(file: &str) -> Result<(String, Input, Naming), CliError> {
     if let Some(name) = file.strip_prefix("sample:") {
         let all = crate::samples::shape_samples();
         let names: Vec<&str> = all.iter().map(|s| s.0).collect();
         return match all.into_iter().find(|s| s.0 == name) {
-            Some((n, input)) => Ok((format!("sample:{n}"), input)),
+            Some((n, input)) => Ok((format!("sample:{n}"), input, Naming::Indices)),
             None => Err(CliError::Usage(format!(
                 "no built-in sample '{name}' (samples: {})",
                 names.join(", ")
@@ -508,16 +500,15 @@ pub fn read_any(file: &str) -> Result<(String, Input), CliError> {
         };
     }
     let source = crate::input::Source::read_text(file)?;
+    let naming = Naming::of_text(&source.text);
     let input = if capdiv_mesh::obj::looks_like_json(&source.text) {
         crate::input::parse(&source.name, &source.text)?
     } else {
-        let mesh = capdiv_mesh::obj::parse_obj(&source.text).map_err(|error| CliError::Mesh {
-            source: source.name.clone(),
-            error,
-        })?;
+        let mesh = capdiv_mesh::obj::parse_obj(&source.text)
+            .map_err(|error| CliError::mesh(&source.name, error).named(&naming))?;
         Input::Mesh(MeshJson::of(&mesh))
     };
-    Ok((source.name, input))
+    Ok((source.name, input, naming))
 }
 
 /// Geometry at `(u, v)` of a patch: position, unit normal, `K`, `H`

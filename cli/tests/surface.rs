@@ -686,32 +686,32 @@ fn bad_meshes_fail_cleanly() {
         (
             "out-of-range",
             format!("{tri}f 1 2 9\n"),
-            "face 0 refers to vertex 8",
+            "face 1 (line 5) refers to vertex 9, the mesh has 4 vertices",
         ),
         (
             "negative-out-of-range",
             format!("{tri}f 1 2 3\nf 1 -9 2\n"),
-            "face 1 refers to vertex",
+            "face 2 (line 6) refers to a vertex before the first one",
         ),
         (
             "two-vertices",
             format!("{tri}f 1 2 3\nf 2 3\n"),
-            "face 1 has 2 vertices",
+            "face 2 (line 6) has 2 vertices",
         ),
         (
             "repeated",
             format!("{tri}f 1 2 3\nf 2 4 4 3\n"),
-            "face 1 lists vertex 3",
+            "face 2 (line 6) lists vertex 4 (line 4)",
         ),
         (
             "nan",
             "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n".into(),
-            "vertex 1",
+            "vertex 2 (line 2) has a coordinate",
         ),
         (
             "inf",
             "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n".into(),
-            "vertex 2",
+            "vertex 3 (line 3) has a coordinate",
         ),
         ("empty", String::new(), "no faces"),
         ("only-vertices", tri.into(), "no faces"),
@@ -780,7 +780,7 @@ fn bad_meshes_fail_cleanly() {
         "f32-range",
         "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n".as_bytes(),
         &["--precision", "f32"],
-        "vertex 1",
+        "vertex 2 (line 2) has a coordinate that is not finite",
     );
 }
 

@@ -212,7 +212,7 @@ fn glb_and_gltf_hold_the_obj_surface_with_quads_as_two_triangles() {
         assert_eq!(*q, obj.v[v].map(|x| x as f32));
     }
     assert!(report.contains(&format!(
-        "gltf         1 node(s), {} vertices, {} triangles",
+        "gltf         1 node, {} vertices, {} triangles",
         pos.len(),
         tris.len()
     )));

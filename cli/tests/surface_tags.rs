@@ -66,9 +66,9 @@ fn obj_tags_are_read_and_reported() {
         .find(|l| l.trim_start().starts_with("tags"))
         .unwrap_or_else(|| panic!("no tags line: {}", run.stderr));
     for part in [
-        "2 crease(s)",
-        "1 corner(s)",
-        "1 hole(s)",
+        "2 creases",
+        "1 corner,",
+        "1 hole;",
         "boundary edge-only",
         "creasing chaikin",
         "triangles smooth",

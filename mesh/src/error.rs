@@ -1,8 +1,40 @@
 //! `MeshError`: every way a mesh can be unusable, one variant per cause, each
-//! naming the face or vertex (0-based, as in the input) where it was found.
+//! naming the face or vertex where it was found — 0-based indices into
+//! [`crate::MeshInput`] by default, or as the file counts them through
+//! [`Names`] (OBJ: 1-based, with the line, [`crate::obj::ObjLines`]).
 
+use alloc::format;
 use alloc::string::String;
 use core::fmt;
+
+/// How a message names the input's vertices and faces.
+pub trait Names {
+    /// Vertex `v` (0-based index into the mesh), e.g. `vertex 3`.
+    fn vertex(&self, v: usize) -> String;
+    /// Face `f` (0-based index into the mesh), e.g. `face 0`.
+    fn face(&self, f: usize) -> String;
+    /// A vertex index that is out of range, possibly negative (as the
+    /// index list gives it).
+    fn missing_vertex(&self, index: i64) -> String {
+        match usize::try_from(index) {
+            Ok(v) => self.vertex(v),
+            Err(_) => format!("vertex {index}"),
+        }
+    }
+}
+
+/// 0-based indices, as in [`crate::MeshInput`] and the JSON mesh schema.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Indices;
+
+impl Names for Indices {
+    fn vertex(&self, v: usize) -> String {
+        format!("vertex {v}")
+    }
+    fn face(&self, f: usize) -> String {
+        format!("face {f}")
+    }
+}
 
 /// Why a mesh was rejected. Display gives one line naming the face or vertex.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -77,48 +109,65 @@ pub enum MeshError {
     },
 }
 
-impl fmt::Display for MeshError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl MeshError {
+    /// The one-line message, naming vertices and faces by `names`.
+    pub fn describe(&self, names: &dyn Names) -> String {
+        let v = |i: usize| names.vertex(i);
+        let f = |i: usize| names.face(i);
         match self {
-            MeshError::Empty => write!(f, "the mesh has no faces"),
-            MeshError::Parse { line, message } => write!(f, "line {line}: {message}"),
+            MeshError::Empty => String::from("the mesh has no faces"),
+            MeshError::Parse { line, message } => format!("line {line}: {message}"),
             MeshError::NonFinite { vertex } => {
-                write!(f, "vertex {vertex} has a coordinate that is not finite")
+                format!("{} has a coordinate that is not finite", v(*vertex))
             }
             MeshError::IndexOutOfRange {
                 face,
                 index,
                 vertices,
-            } => write!(
-                f,
-                "face {face} refers to vertex {index}, the mesh has {vertices} vertices"
-            ),
+            } => {
+                format!(
+                    "{} refers to {}, the mesh has {vertices} vertices",
+                    f(*face),
+                    names.missing_vertex(*index)
+                )
+            }
             MeshError::FaceTooSmall { face, len } => {
-                write!(f, "face {face} has {len} vertices, at least 3 are needed")
+                format!("{} has {len} vertices, at least 3 are needed", f(*face))
             }
             MeshError::RepeatedVertex { face, vertex } => {
-                write!(f, "face {face} lists vertex {vertex} more than once")
+                format!("{} lists {} more than once", f(*face), v(*vertex))
             }
-            MeshError::NonManifoldEdge { face, edge } => write!(
-                f,
-                "face {face} is a third face on edge {}-{} (non-manifold edge)",
-                edge[0], edge[1]
+            MeshError::NonManifoldEdge { face, edge } => format!(
+                "{} is a third face on the edge from {} to {} (non-manifold edge)",
+                f(*face),
+                v(edge[0]),
+                v(edge[1])
             ),
-            MeshError::InconsistentOrientation { face, edge } => write!(
-                f,
-                "face {face} runs edge {}-{} in the same direction as another face (inconsistent orientation)",
-                edge[0], edge[1]
+            MeshError::InconsistentOrientation { face, edge } => format!(
+                "{} runs the edge from {} to {} in the same direction as another face \
+                 (inconsistent orientation)",
+                f(*face),
+                v(edge[0]),
+                v(edge[1])
             ),
-            MeshError::NonManifoldVertex { vertex } => write!(
-                f,
-                "the faces around vertex {vertex} do not form one disk (non-manifold vertex)"
+            MeshError::NonManifoldVertex { vertex } => format!(
+                "the faces around {} do not form one disk (non-manifold vertex)",
+                v(*vertex)
             ),
-            MeshError::TooLarge => write!(f, "the mesh has more than 2^31 vertices, faces or corners"),
-            MeshError::TagOutOfRange { what, index, count } => write!(
-                f,
-                "a tag names {what} {index}, but the mesh has {count} {what}s (0-based)"
-            ),
+            MeshError::TooLarge => {
+                String::from("the mesh has more than 2^31 vertices, faces or corners")
+            }
+            MeshError::TagOutOfRange { what, index, count } => {
+                format!("a tag names {what} {index}, but the mesh has {count} {what}s (0-based)")
+            }
         }
+    }
+}
+
+impl fmt::Display for MeshError {
+    /// [`MeshError::describe`] with 0-based [`Indices`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.describe(&Indices))
     }
 }
 

@@ -12,9 +12,12 @@
 //! second.
 
 use crate::chart::{Affine, FaceChart};
+use crate::error::{Indices, Names};
 use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
 use crate::tessellate::PatchGeometry;
 use alloc::boxed::Box;
+use alloc::format;
+use alloc::string::String;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
@@ -142,33 +145,57 @@ pub enum EvalError {
     Kernel {
         /// The cap's index.
         cap: u32,
+        /// The input vertex at the cap's centre (`None`: a face centre).
+        vertex: Option<u32>,
+        /// The input face whose centre is the cap's centre, when `vertex`
+        /// is `None`.
+        face: Option<u32>,
         /// The kernel's error.
         error: Error,
     },
 }
 
-impl core::fmt::Display for EvalError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+impl EvalError {
+    /// The one-line message, naming vertices and faces by `names`.
+    pub fn describe(&self, names: &dyn Names) -> String {
         match self {
             EvalError::WrongLength { expected, found } => {
-                write!(f, "{found} positions given, the mesh has {expected} vertices")
+                format!("{found} positions given, the mesh has {expected} vertices")
             }
             EvalError::NonFinite { vertex } => {
-                write!(f, "vertex {vertex} has a coordinate that is not finite")
+                format!("{} has a coordinate that is not finite", names.vertex(*vertex))
             }
             EvalError::CapacityExceeded {
                 vertex,
                 needed,
                 max,
-            } => write!(
-                f,
-                "the pole at vertex {vertex} needs valence {needed} at the requested depth, at most {max} is supported"
+            } => format!(
+                "the pole at {} needs valence {needed} at the requested depth, at most {max} is supported",
+                names.vertex(*vertex as usize)
             ),
-            EvalError::Overflow => {
-                write!(f, "the refined mesh overflows the number type (coordinates too large)")
-            }
-            EvalError::Kernel { cap, error } => write!(f, "cap {cap}: {error}"),
+            EvalError::Overflow => String::from(
+                "the refined mesh overflows the number type (coordinates too large)",
+            ),
+            EvalError::Kernel {
+                vertex,
+                face,
+                error,
+                ..
+            } => match (vertex, face) {
+                (Some(v), _) => format!("the cap at {}: {error}", names.vertex(*v as usize)),
+                (None, Some(f)) => {
+                    format!("the cap at the centre of {}: {error}", names.face(*f as usize))
+                }
+                (None, None) => format!("a cap: {error}"),
+            },
         }
+    }
+}
+
+impl core::fmt::Display for EvalError {
+    /// [`EvalError::describe`] with 0-based [`Indices`].
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(&self.describe(&Indices))
     }
 }
 
@@ -332,7 +359,12 @@ impl<R: Real> Evaluator<R> {
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
         let n = p.valence;
-        let kernel = |error| EvalError::Kernel { cap: index, error };
+        let kernel = |error| EvalError::Kernel {
+            cap: index,
+            vertex: Some(p.vertex),
+            face: None,
+            error,
+        };
         for (d, &i) in self.links.iter_mut().zip(&p.links) {
             *d = self.work[i as usize].0;
         }
@@ -421,7 +453,12 @@ impl<R: Real> Evaluator<R> {
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
         let n = e.sectors.len();
-        let kernel = |error| EvalError::Kernel { cap: index, error };
+        let kernel = |error| EvalError::Kernel {
+            cap: index,
+            vertex: e.vertex,
+            face: e.face,
+            error,
+        };
         for (d, &i) in self.cnet.iter_mut().zip(&e.nodes) {
             *d = self.work[i as usize].0;
         }
@@ -553,7 +590,12 @@ fn run_eg<R: Real, F>(
 where
     F: Fn(&mut dyn SurfaceSink<R>, u32, usize, PatchDomain, Geom<R>, PatchKind, Point3<R>),
 {
-    let kernel = |error| EvalError::Kernel { cap: index, error };
+    let kernel = |error| EvalError::Kernel {
+        cap: index,
+        vertex: e.vertex,
+        face: e.face,
+        error,
+    };
     let limit = eg.c0();
     let mut normal_sum = Point3::ZERO;
     for m in 1..=depth {

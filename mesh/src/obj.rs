@@ -52,7 +52,7 @@
 //! [`MeshError::NonFinite`]), face sizes, repeated vertices, manifoldness —
 //! all [`crate::Topology::new`]'s job. No input makes the reader panic.
 
-use crate::error::MeshError;
+use crate::error::{MeshError, Names};
 use crate::input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
     VertexCorner,
@@ -94,43 +94,7 @@ pub struct ObjObject {
 /// objects without faces are left out.
 pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), MeshError> {
     let mut reader = Reader::default();
-    let mut joined = String::new();
-    let mut statement_line = 0usize;
-    let mut continuing = false;
-
-    for (k, raw) in strip_bom(text).split('\n').enumerate() {
-        let raw = raw.strip_suffix('\r').unwrap_or(raw);
-        // A comment ends the physical line (a `\` inside it continues nothing).
-        let raw = match raw.find('#') {
-            Some(at) => &raw[..at],
-            None => raw,
-        };
-        if !continuing {
-            statement_line = k + 1;
-            joined.clear();
-        }
-        // A trailing backslash (after trailing blanks) continues the line.
-        let trimmed = raw.trim_end();
-        if let Some(head) = trimmed.strip_suffix('\\') {
-            joined.push_str(head);
-            joined.push(' ');
-            continuing = true;
-            continue;
-        }
-        continuing = false;
-        let line: &str = if joined.is_empty() {
-            raw
-        } else {
-            joined.push_str(raw);
-            &joined
-        };
-        reader.statement(line, statement_line)?;
-    }
-    if continuing {
-        // The text ended on a continuation: the statement is what was read.
-        let line = core::mem::take(&mut joined);
-        reader.statement(&line, statement_line)?;
-    }
+    for_each_statement(text, |line, line_no| reader.statement(line, line_no))?;
 
     let Reader {
         vertices,
@@ -215,6 +179,100 @@ pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), Mesh
         },
         objects,
     ))
+}
+
+/// Calls `f` with every logical line of `text` (comments removed, `\`
+/// continuations joined) and the 1-based line where it starts.
+fn for_each_statement(
+    text: &str,
+    mut f: impl FnMut(&str, usize) -> Result<(), MeshError>,
+) -> Result<(), MeshError> {
+    let mut joined = String::new();
+    let mut statement_line = 0usize;
+    let mut continuing = false;
+    for (k, raw) in strip_bom(text).split('\n').enumerate() {
+        let raw = raw.strip_suffix('\r').unwrap_or(raw);
+        // A comment ends the physical line (a `\` inside it continues nothing).
+        let raw = match raw.find('#') {
+            Some(at) => &raw[..at],
+            None => raw,
+        };
+        if !continuing {
+            statement_line = k + 1;
+            joined.clear();
+        }
+        // A trailing backslash (after trailing blanks) continues the line.
+        let trimmed = raw.trim_end();
+        if let Some(head) = trimmed.strip_suffix('\\') {
+            joined.push_str(head);
+            joined.push(' ');
+            continuing = true;
+            continue;
+        }
+        continuing = false;
+        let line: &str = if joined.is_empty() {
+            raw
+        } else {
+            joined.push_str(raw);
+            &joined
+        };
+        f(line, statement_line)?;
+    }
+    if continuing {
+        // The text ended on a continuation: the statement is what was read.
+        f(&joined, statement_line)?;
+    }
+    Ok(())
+}
+
+/// Where each vertex and face of an OBJ text is written: the 1-based line of
+/// its `v` or `f` statement. As [`Names`] it names them as the file counts
+/// them: `vertex 3 (line 5)`, `face 1 (line 9)` (1-based).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ObjLines {
+    /// Line of vertex `i` (0-based `i`).
+    pub vertices: Vec<usize>,
+    /// Line of face `i` (0-based `i`, faces in `f` order).
+    pub faces: Vec<usize>,
+}
+
+impl ObjLines {
+    /// The lines of every `v` and `f` statement of `text` (read as
+    /// [`parse_obj`] reads it; the text need not be valid).
+    pub fn of(text: &str) -> Self {
+        let mut lines = ObjLines::default();
+        let _ = for_each_statement(text, |line, line_no| {
+            match line.split_whitespace().next() {
+                Some("v") => lines.vertices.push(line_no),
+                Some("f") => lines.faces.push(line_no),
+                _ => {}
+            }
+            Ok(())
+        });
+        lines
+    }
+}
+
+impl Names for ObjLines {
+    fn vertex(&self, v: usize) -> String {
+        match self.vertices.get(v) {
+            Some(line) => format!("vertex {} (line {line})", v + 1),
+            None => format!("vertex {}", v + 1),
+        }
+    }
+    fn missing_vertex(&self, index: i64) -> String {
+        match usize::try_from(index) {
+            Ok(v) => format!("vertex {}", v as u64 + 1),
+            // A relative index reaching before the first vertex.
+            Err(_) => String::from("a vertex before the first one"),
+        }
+    }
+    fn face(&self, f: usize) -> String {
+        match self.faces.get(f) {
+            Some(line) => format!("face {} (line {line})", f + 1),
+            None => format!("face {}", f + 1),
+        }
+    }
 }
 
 /// What has been read so far.
@@ -552,6 +610,25 @@ mod tests {
 
     fn parse_err(text: &str) -> MeshError {
         parse_obj(text).unwrap_err()
+    }
+
+    #[test]
+    fn obj_lines_name_vertices_and_faces_as_the_file_counts_them() {
+        // Comments, a `vn`, a continued face and a blank line in between.
+        let text = "# a\nv 0 0 0\nvn 0 0 1\nv 1 0 0\n\nv 0 1 0\nf 1 2 \\\n 3\nf 1 2 4\n";
+        let lines = ObjLines::of(text);
+        assert_eq!(lines.vertices, vec![2, 4, 6]);
+        assert_eq!(lines.faces, vec![7, 9]);
+        let e = parse_err(text);
+        assert_eq!(
+            e.describe(&lines),
+            "face 2 (line 9) refers to vertex 4, the mesh has 3 vertices"
+        );
+        // Without the lines (a JSON mesh): 0-based indices.
+        assert_eq!(
+            e.to_string(),
+            "face 1 refers to vertex 3, the mesh has 3 vertices"
+        );
     }
 
     #[test]

@@ -14,12 +14,13 @@ use crate::shape::{build, drawable, override_boundary, read_any, schemes_for, Sh
 
 /// Runs the command.
 pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
-    let (name, mut input) = read_any(&args.picture.file)?;
+    let (name, mut input, naming) = read_any(&args.picture.file)?;
     override_boundary(&name, &mut input, args.picture.boundary)?;
     let shapes: Vec<Shape> = schemes_for(&input)
         .into_iter()
         .map(|s| build(&name, &input, Some(s), args.picture.depth))
-        .collect::<Result<_, _>>()?;
+        .collect::<Result<_, _>>()
+        .map_err(|e: CliError| e.named(&naming))?;
     for s in &shapes {
         drawable(&name, s, args.picture.depth)?;
     }

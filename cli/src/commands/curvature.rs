@@ -92,8 +92,8 @@ pub fn table(shape: &Shape, samples: u32) -> CurvatureTable {
 
 /// Runs the command.
 pub fn run(args: &CurvatureArgs) -> Result<Outcome, CliError> {
-    let (name, input) = read_any(&args.io.file)?;
-    let shape = build(&name, &input, args.scheme, args.depth)?;
+    let (name, input, naming) = read_any(&args.io.file)?;
+    let shape = build(&name, &input, args.scheme, args.depth).map_err(|e| e.named(&naming))?;
     let t = table(&shape, args.samples);
     let mut out = Outcome::new(
         to_json(&t, args.pretty),

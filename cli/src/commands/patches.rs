@@ -167,7 +167,7 @@ fn format<R: Scalar, const K: usize>(
     name: &str,
 ) -> Result<Vec<u8>, CliError> {
     let grid = args.grid as usize;
-    Ok(match args.format {
+    Ok(match args.format() {
         PatchFormat::Json => {
             let out: Vec<PatchOutput<R>> = set
                 .patches
@@ -309,7 +309,7 @@ fn stream<R: Scalar>(
     args: &PatchesArgs,
     first: FirstStep,
 ) -> Result<Outcome, CliError> {
-    if args.format == PatchFormat::Png {
+    if args.format() == PatchFormat::Png {
         return Err(CliError::Usage(
             "--stream writes json or obj (a png needs the whole mesh)".into(),
         ));
@@ -343,7 +343,7 @@ fn stream<R: Scalar>(
         message: e.to_string(),
     };
     let grid = args.grid as usize;
-    let mut writer = match args.format {
+    let mut writer = match args.format() {
         PatchFormat::Obj => {
             let side = grid.max(1) + 1;
             let title = format!("capdiv patches --depth {} {name}", args.depth);

@@ -38,9 +38,10 @@ pub fn png_bytes(pic: &crate::picture::Picture) -> Result<Vec<u8>, CliError> {
 
 /// Runs the command.
 pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
-    let (name, mut input) = read_any(&args.picture.file)?;
+    let (name, mut input, naming) = read_any(&args.picture.file)?;
     override_boundary(&name, &mut input, args.picture.boundary)?;
-    let shape = build(&name, &input, args.scheme, args.picture.depth)?;
+    let shape =
+        build(&name, &input, args.scheme, args.picture.depth).map_err(|e| e.named(&naming))?;
     drawable(&name, &shape, args.picture.depth)?;
     let (cam, shading) = camera(&args.picture);
     let pic = draw(&[&shape], &cam, shading, false);

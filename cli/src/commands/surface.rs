@@ -25,12 +25,13 @@
 
 use super::Outcome;
 use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme};
-use crate::error::CliError;
+use crate::error::{CliError, Naming};
 use crate::export::gltf;
 use crate::input::{parse, Input, Source};
 use crate::mesh::Mesh;
 use crate::output::{to_json, Sink};
 use crate::table::Table;
+use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
@@ -44,6 +45,7 @@ use capdiv_mesh::{
 };
 use serde::Serialize;
 use std::fmt::Write;
+use std::io::IsTerminal;
 use std::time::Instant;
 
 /// Weld tolerance of `f64` output, relative to the bounding-box size.
@@ -52,6 +54,11 @@ pub const WELD_F64: f64 = 1e-9;
 /// always does for `surface`), relative to the bounding-box size.
 pub const WELD_F32: f64 = 1e-5;
 
+/// What `surface` prints on a terminal instead of the surface.
+pub const TERMINAL_HINT: &str =
+    "  output       not printed to a terminal: give -o FILE (.obj, .json or \
+     .png), or --format json|obj to print it\n";
+
 /// Valences that take a user EG table.
 pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
 
@@ -59,16 +66,26 @@ pub const TABLE_VALENCES: std::ops::RangeInclusive<usize> = 6..=10;
 pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
     let tables = read_tables(&args.eg_table)?;
     let source = Source::read_text(&args.file)?;
-    let (mut mesh, objects) = read_mesh_objects(&source)?;
+    let naming = Naming::of_text(&source.text);
+    let (mut mesh, objects) = read_mesh_objects(&source).map_err(|e| e.named(&naming))?;
     if let Some(b) = args.boundary {
         mesh.tags.boundary = b.into();
     }
     let name = source.name.as_str();
     let input = (&mesh, objects.as_slice());
     let (bytes, report) = match args.precision {
-        Precision::F64 => produce::<f64>(name, input, &tables, args, "f64", WELD_F64)?,
-        Precision::F32 => produce::<f32>(name, input, &tables, args, "f32", WELD_F32)?,
-    };
+        Precision::F64 => produce::<f64>(name, &naming, input, &tables, args, "f64", WELD_F64),
+        Precision::F32 => produce::<f32>(name, &naming, input, &tables, args, "f32", WELD_F32),
+    }
+    .map_err(|e| e.named(&naming))?;
+    // A terminal gets the summary, not megabytes of patches, unless a
+    // format was asked for.
+    if args.output.is_none() && args.format.is_none() && std::io::stdout().is_terminal() {
+        let mut out = Outcome::new(Vec::new(), Sink::Stdout);
+        out.report = if args.quiet { String::new() } else { report };
+        out.report.push_str(TERMINAL_HINT);
+        return Ok(out);
+    }
     let mut out = Outcome::new(bytes, Sink::from_option(args.output.clone()));
     if !args.quiet {
         out.report = report;
@@ -118,10 +135,7 @@ pub fn read_mesh(source: &Source) -> Result<MeshInput, CliError> {
 /// [`read_mesh`] and the OBJ's named objects ([`parse_obj_objects`]; none
 /// for JSON).
 pub fn read_mesh_objects(source: &Source) -> Result<(MeshInput, Vec<ObjObject>), CliError> {
-    let mesh_err = |error| CliError::Mesh {
-        source: source.name.clone(),
-        error,
-    };
+    let mesh_err = |error| CliError::mesh(&source.name, error);
     if looks_like_json(&source.text) {
         match parse(&source.name, &source.text)? {
             Input::Mesh(m) => m.to_mesh(&source.name).map(|m| (m, Vec::new())),
@@ -138,6 +152,7 @@ pub fn read_mesh_objects(source: &Source) -> Result<(MeshInput, Vec<ObjObject>),
 
 fn produce<R: Scalar>(
     name: &str,
+    naming: &Naming,
     (mesh, objects): (&MeshInput, &[ObjObject]),
     tables: &[Table],
     args: &SurfaceArgs,
@@ -147,14 +162,15 @@ fn produce<R: Scalar>(
     let cc = args.scheme == SurfaceScheme::CatmullClark;
     let surface = build_scheme::<R>(name, mesh, args.depth, tables, precision, cc)?;
     let grid = args.grid as usize;
-    Ok(match args.format {
+    let format = args.format();
+    Ok(match format {
         SurfaceFormat::Json => {
             let out = SurfaceJson {
                 patches: surface.patches.iter().map(PatchJson::new).collect(),
                 caps: surface.caps.iter().map(CapJson::new).collect(),
                 summary: &surface.summary,
             };
-            let report = report(name, &surface.summary, None);
+            let report = report(name, &surface.summary, None, naming);
             (to_json(&out, args.pretty), report)
         }
         SurfaceFormat::Obj | SurfaceFormat::Png | SurfaceFormat::Glb | SurfaceFormat::Gltf => {
@@ -169,13 +185,13 @@ fn produce<R: Scalar>(
             };
             // glTF groups faces by input face (its objects); the others colour
             // them by level.
-            let tag = match args.format {
+            let tag = match format {
                 SurfaceFormat::Glb | SurfaceFormat::Gltf => |p: &PatchRecord<_>| p.face,
                 _ => |p: &PatchRecord<_>| p.level,
             };
             let tess = tessellate_surface_tagged(&surface, mesh, grid, weld, guide.as_ref(), tag);
-            let mut report = report(name, &surface.summary, Some(&tess.info));
-            let bytes = match args.format {
+            let mut report = report(name, &surface.summary, Some(&tess.info), naming);
+            let bytes = match format {
                 SurfaceFormat::Obj => {
                     let title = format!(
                         "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
@@ -189,10 +205,12 @@ fn produce<R: Scalar>(
                     let doc = gltf::document(&tess.mesh, &groups);
                     let _ = writeln!(
                         report,
-                        "  gltf         {} node(s), {} vertices, {} triangles",
-                        doc.nodes, doc.vertices, doc.triangles
+                        "  gltf         {}, {}, {}",
+                        count(doc.nodes, "node", "nodes"),
+                        count(doc.vertices, "vertex", "vertices"),
+                        count(doc.triangles, "triangle", "triangles")
                     );
-                    if args.format == SurfaceFormat::Glb {
+                    if format == SurfaceFormat::Glb {
                         gltf::glb(&doc)
                     } else {
                         gltf::gltf_text(&doc)
@@ -251,14 +269,8 @@ pub fn build_scheme<R: Scalar>(
     precision: &str,
     catmull_clark: bool,
 ) -> Result<Surface<R>, CliError> {
-    let mesh_err = |error| CliError::Mesh {
-        source: name.to_string(),
-        error,
-    };
-    let eval_err = |error| CliError::Eval {
-        source: name.to_string(),
-        error,
-    };
+    let mesh_err = |error| CliError::mesh(name, error);
+    let eval_err = |error| CliError::eval(name, error);
     let start = Instant::now();
     let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
     let plan = SurfacePlan::for_mesh(
@@ -595,11 +607,10 @@ impl TagSummary {
             .map(|t| format!("{} (line {})", t.name, t.line))
             .collect();
         format!(
-            "{} crease(s), {} corner(s), {} hole(s); boundary {}, creasing {}, triangles {}; \
-             scheme {}; ignored tags: {}",
-            self.creases,
-            self.corners,
-            self.holes,
+            "{}, {}, {}; boundary {}, creasing {}, triangles {}; scheme {}; ignored tags: {}",
+            count(self.creases, "crease", "creases"),
+            count(self.corners, "corner", "corners"),
+            count(self.holes, "hole", "holes"),
             self.boundary,
             self.crease_method,
             self.triangles,
@@ -806,12 +817,11 @@ pub fn closed_text(closed: &Result<(), BadEdge>) -> String {
                 EdgeFault::Overused => "used by more than two faces",
             };
             format!(
-                "not closed: edge {}-{} (1-based OBJ vertices {}-{}) of face {} is {what}",
-                b.from,
-                b.to,
+                "not closed: the edge from vertex {} to vertex {} of face {} (1-based, as in \
+                 the OBJ written) is {what}",
                 b.from as u64 + 1,
                 b.to as u64 + 1,
-                b.face
+                b.face as u64 + 1
             )
         }
     }
@@ -823,24 +833,32 @@ pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> St
     let header = [
         title.to_string(),
         format!(
-            "{} patches ({} regular, {} polar, {} eg, {} catmull-clark), {} caps",
-            summary.patches.total,
+            "{} ({} regular, {} polar, {} eg, {} catmull-clark), {}",
+            count(summary.patches.total, "patch", "patches"),
             summary.patches.regular,
             summary.patches.polar,
             summary.patches.eg,
             summary.patches.catmull_clark,
-            summary.caps.iter().map(|c| c.count).sum::<usize>()
+            count(
+                summary.caps.iter().map(|c| c.count).sum::<usize>(),
+                "cap",
+                "caps"
+            )
         ),
         format!(
-            "grid {}x{} per patch; welded within {:e} ({:e} x bounding-box size {})",
-            i.grid, i.grid, i.tolerance, i.factor, i.size
+            "grid {}x{} per patch; welded within {} ({} x bounding-box size {})",
+            i.grid,
+            i.grid,
+            sig(i.tolerance, 3),
+            sig(i.factor, 3),
+            sig(i.size, 6)
         ),
         format!(
-            "{} vertices, {} faces ({} triangles, {} quads); {}",
-            i.vertices,
-            i.triangles + i.quads,
-            i.triangles,
-            i.quads,
+            "{}, {} ({}, {}); {}",
+            count(i.vertices, "vertex", "vertices"),
+            count(i.triangles + i.quads, "face", "faces"),
+            count(i.triangles, "triangle", "triangles"),
+            count(i.quads, "quad", "quads"),
             closed_text(&i.closed)
         ),
     ];
@@ -867,14 +885,15 @@ pub fn render_mesh<R: Scalar>(t: &Tessellation<R>) -> Mesh<R> {
     }
 }
 
-/// The human-readable summary block (stderr).
-pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
+/// The human-readable summary block (stderr); faces and vertices numbered
+/// as the input counts them (`naming`).
+pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>, naming: &Naming) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "capdiv surface: {name}: {} vertices, {} faces ({}); depth {}, {}",
-        s.input.vertices,
-        s.input.faces,
+        "capdiv surface: {name}: {}, {} ({}); depth {}, {}",
+        count(s.input.vertices, "vertex", "vertices"),
+        count(s.input.faces, "face", "faces"),
         if s.input.closed { "closed" } else { "open" },
         s.depth,
         s.precision
@@ -902,15 +921,15 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
     );
     let _ = writeln!(
         t,
-        "  refinement   {} step(s){}",
-        s.refinement_steps,
-        faces_by_reason(&s.needed_refinement, " needed by")
+        "  refinement   {}{}",
+        count(s.refinement_steps, "step", "steps"),
+        faces_by_reason(&s.needed_refinement, " needed by", naming)
     );
     let _ = writeln!(
         t,
         "  uncovered    {}{}",
         s.uncovered.len(),
-        faces_by_reason(&s.uncovered, ":")
+        faces_by_reason(&s.uncovered, ":", naming)
     );
     let levels: Vec<String> = s
         .patches_per_level
@@ -921,9 +940,9 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
         .collect();
     let _ = writeln!(
         t,
-        "  levels       patches per level {}; {} last hole(s) closed by fans",
+        "  levels       patches per level {}; {} closed by fans",
         levels.join(", "),
-        s.last_holes
+        count(s.last_holes, "last hole", "last holes")
     );
     if !s.fallbacks.is_empty() {
         let mut by: Vec<(&str, Vec<u32>)> = Vec::new();
@@ -936,13 +955,22 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
         let text: Vec<String> = by
             .iter()
             .map(|(d, vs)| {
-                let shown: Vec<String> = vs.iter().take(8).map(|v| v.to_string()).collect();
+                // `Fallback::vertex` is 1-based; shown as the input counts.
+                let shown: Vec<String> = vs
+                    .iter()
+                    .take(8)
+                    .map(|&v| naming.number(v as usize - 1).to_string())
+                    .collect();
                 let more = if vs.len() > 8 {
                     format!(" and {} more", vs.len() - 8)
                 } else {
                     String::new()
                 };
-                format!("{} vertex(es) ({}{more}): {d}", vs.len(), shown.join(", "))
+                format!(
+                    "{} ({}{more}): {d}",
+                    count(vs.len(), "vertex", "vertices"),
+                    shown.join(", ")
+                )
             })
             .collect();
         let _ = writeln!(t, "  fallback     Catmull-Clark at {}", text.join("; "));
@@ -950,12 +978,12 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
     if let Some(i) = tess {
         let _ = writeln!(
             t,
-            "  tessellation {} vertices, {} triangles, {} quads (grid {}, weld {:e}); {}",
-            i.vertices,
-            i.triangles,
-            i.quads,
+            "  tessellation {}, {}, {} (grid {}, weld {}); {}",
+            count(i.vertices, "vertex", "vertices"),
+            count(i.triangles, "triangle", "triangles"),
+            count(i.quads, "quad", "quads"),
             i.grid,
-            i.tolerance,
+            sig(i.tolerance, 3),
             closed_text(&i.closed)
         );
     }
@@ -971,8 +999,9 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>) -> String {
     t
 }
 
-/// ` needed by N faces (reason: faces …; …)`, faces listed up to 8 a reason.
-fn faces_by_reason(list: &[FaceReason], lead: &str) -> String {
+/// ` needed by N faces (reason: faces …; …)`, faces listed up to 8 a reason,
+/// numbered as the input counts them.
+fn faces_by_reason(list: &[FaceReason], lead: &str, naming: &Naming) -> String {
     if list.is_empty() {
         return String::new();
     }
@@ -987,10 +1016,18 @@ fn faces_by_reason(list: &[FaceReason], lead: &str) -> String {
                 .filter(|f| f.reason == *id)
                 .map(|f| f.face)
                 .collect();
-            let shown: Vec<String> = faces.iter().take(8).map(|f| f.to_string()).collect();
+            let shown: Vec<String> = faces
+                .iter()
+                .take(8)
+                .map(|&f| naming.number(f as usize).to_string())
+                .collect();
             let more = if faces.len() > 8 { ", …" } else { "" };
             format!("{id}: faces {}{more}", shown.join(", "))
         })
         .collect();
-    format!("{lead} {} input face(s) ({})", list.len(), parts.join("; "))
+    format!(
+        "{lead} {} ({})",
+        count(list.len(), "input face", "input faces"),
+        parts.join("; ")
+    )
 }

@@ -37,7 +37,7 @@ use alloc::vec::Vec;
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 
 pub use check::{is_closed_and_oriented, BadEdge, EdgeFault};
-pub use obj::write_obj;
+pub use obj::{write_number, write_obj, write_point};
 
 /// Edge `v = 0` of a patch's own square, `u` running from 0 to 1.
 pub const EDGE_V0: u8 = 0;

@@ -3,21 +3,21 @@
 use super::Tessellation;
 use alloc::string::String;
 use capdiv::Real;
-use core::fmt::{Display, Write};
+use core::fmt::{Display, LowerExp, Write};
 
 /// OBJ text: `header` lines as `#` comments, then one `v x y z` and one
 /// `vn x y z` line per vertex, then one `f a//a b//b c//c[ d//d]` line per
 /// face (1-based, counter-clockwise about the normals, tags not written).
-pub fn write_obj<R: Real + Display>(t: &Tessellation<R>, header: &[String]) -> String {
+/// Numbers as [`write_number`]: every digit needed to read them back
+/// exactly, no more.
+pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[String]) -> String {
     let mut text = String::with_capacity(t.positions.len() * 96 + t.faces.len() * 40);
     for line in header {
         let _ = writeln!(text, "# {line}");
     }
     for (p, n) in t.positions.iter().zip(&t.normals) {
-        let [x, y, z] = p.0;
-        let [a, b, c] = n.0;
-        let _ = writeln!(text, "v {x} {y} {z}");
-        let _ = writeln!(text, "vn {a} {b} {c}");
+        write_point(&mut text, "v", p.0);
+        write_point(&mut text, "vn", n.0);
     }
     for f in &t.faces {
         text.push('f');
@@ -28,4 +28,81 @@ pub fn write_obj<R: Real + Display>(t: &Tessellation<R>, header: &[String]) -> S
         text.push('\n');
     }
     text
+}
+
+/// `keyword x y z` and a newline, each number by [`write_number`].
+pub fn write_point<R: Display + LowerExp + Copy>(text: &mut String, keyword: &str, p: [R; 3]) {
+    text.push_str(keyword);
+    for x in p {
+        text.push(' ');
+        write_number(text, x);
+    }
+    text.push('\n');
+}
+
+/// Appends `x` in Rust's positional form (`{}`), or in its exponent form
+/// (`{:e}`) when the positional one is longer than 8 characters and the
+/// exponent one is shorter (so `100000` and `0.0001` stay positional). Both
+/// print the shortest digit string that reads back as
+/// the same `f32`/`f64`, so the choice changes only the notation, never the
+/// value: `-4.6053215007904947e-14` instead of
+/// `-0.000000000000046053215007904947`, `0.25` instead of `2.5e-1`. Every
+/// OBJ reader that parses numbers with `strtod` (or Rust's `parse`) reads
+/// both.
+pub fn write_number<R: Display + LowerExp>(text: &mut String, x: R) {
+    let start = text.len();
+    let _ = write!(text, "{x}");
+    let positional = text.len() - start;
+    // The exponent form is at most as long as the mantissa digits plus
+    // `e-NNN`; try it only when the positional form is long.
+    if positional > 8 {
+        let mut exp = String::new();
+        let _ = write!(exp, "{x:e}");
+        if exp.len() < positional {
+            text.truncate(start);
+            text.push_str(&exp);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::write_number;
+    use alloc::string::String;
+
+    fn number<R: core::fmt::Display + core::fmt::LowerExp>(x: R) -> String {
+        let mut s = String::new();
+        write_number(&mut s, x);
+        s
+    }
+
+    #[test]
+    fn numbers_read_back_exactly_and_stay_short() {
+        assert_eq!(
+            number(-4.6053215007904947e-14f64),
+            "-4.6053215007904947e-14"
+        );
+        assert_eq!(number(0.25f64), "0.25");
+        assert_eq!(number(100000.0f64), "100000");
+        assert_eq!(number(0.0001f64), "0.0001");
+        assert_eq!(number(-0.0f64), "-0");
+        assert_eq!(number(1e-7f32), "1e-7");
+        // A sweep over the exponent range: bit-identical round trip, and
+        // never longer than sign + 17 digits + point + `e-308` (24).
+        let mut x = 1.234_567_890_123_456_7e-300f64;
+        while x < 1e300 {
+            for v in [x, -x, x * 0.999_999_999_999_9] {
+                let s = number(v);
+                assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{s}");
+                assert!(s.len() <= 24, "{s}");
+            }
+            let f = x as f32;
+            if f.is_finite() && f != 0.0 {
+                let s = number(f);
+                assert_eq!(s.parse::<f32>().unwrap().to_bits(), f.to_bits(), "{s}");
+                assert!(s.len() <= 15, "{s}");
+            }
+            x *= 7.77;
+        }
+    }
 }
