@@ -1032,6 +1032,21 @@ fn an_empty_surface_is_an_error() {
         &["--boundary", "none", "--format", "png"],
         "empty",
     );
+    // The picture commands refuse it too: no blank PNG.
+    let input = dir.path().join("all-holes.obj");
+    std::fs::write(&input, format!("{quad}t hole 1/0/0 0\n")).unwrap();
+    for command in ["render", "compare"] {
+        let out = dir.path().join(format!("{command}.png"));
+        let run = capdiv(&[command, "-o", s(&out), s(&input)], None);
+        assert_eq!(run.code, Some(2), "{command}: {}", run.stderr);
+        assert_eq!(run.stderr.lines().count(), 1, "{command}: {}", run.stderr);
+        assert!(
+            run.stderr.contains("no patch to draw"),
+            "{command}: {}",
+            run.stderr
+        );
+        assert!(!out.exists(), "{command}: a picture was written");
+    }
 }
 
 /// The summary says per level how many patches there are, and why a cap
