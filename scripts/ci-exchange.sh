@@ -62,8 +62,8 @@ for file in "${cases[@]}"; do
     "$bin" surface --depth 4 --grid 3 --format "$format" -o "$work/cases/$name.$format" "$file" \
       2> "$work/cases/$name.$format.log"
   done
-  # `  gltf         N node(s), V vertices, T triangles`
-  sed -n 's/^  gltf *\([0-9]*\) node(s), \([0-9]*\) vertices, \([0-9]*\) triangles$/\1 \2 \3/p' \
+  # `  gltf         N nodes, V vertices, T triangles` (singular for 1)
+  sed -n 's/^  gltf *\([0-9]*\) nodes\{0,1\}, \([0-9]*\) vert[a-z]*, \([0-9]*\) triangles\{0,1\}$/\1 \2 \3/p' \
     "$work/cases/$name.glb.log" > "$work/cases/$name.expect"
   [ -s "$work/cases/$name.expect" ] || { echo "no gltf line for $name"; cat "$work/cases/$name.glb.log"; exit 1; }
 done
