@@ -105,19 +105,7 @@ fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {
 
 /// Boundary loops of a tessellation: boundary edges (used once) chained.
 fn boundary_loops(faces: &[capdiv_mesh::tessellate::Face]) -> usize {
-    let mut count: HashMap<(u32, u32), i32> = HashMap::new();
-    for f in faces {
-        let c = f.corners();
-        for k in 0..c.len() {
-            let (a, b) = (c[k], c[(k + 1) % c.len()]);
-            *count.entry((a.min(b), a.max(b))).or_default() += 1;
-        }
-    }
-    let boundary: Vec<(u32, u32)> = count
-        .into_iter()
-        .filter(|&(_, n)| n == 1)
-        .map(|(e, _)| e)
-        .collect();
+    let boundary = boundary_edges(faces.iter().map(|f| f.corners()));
     // Union-find over boundary vertices.
     let mut parent: HashMap<u32, u32> = HashMap::new();
     fn find(p: &mut HashMap<u32, u32>, x: u32) -> u32 {
