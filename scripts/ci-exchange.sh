@@ -20,17 +20,7 @@ start=$(date +%s)
 step() { echo "== exchange: $* ($(( $(date +%s) - start )) s)"; }
 
 step "tools"
-missing=()
-[ -x "${CHROMIUM:-/usr/bin/chromium}" ] || missing+=(chromium)
-command -v node >/dev/null || missing+=(nodejs)
-command -v npm >/dev/null || missing+=(npm)
-if [ ${#missing[@]} -gt 0 ]; then
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
-"${CHROMIUM:-/usr/bin/chromium}" --version
-echo "node $(node --version)"
+. "$root/scripts/browser-tools.sh"
 (cd scripts/exchange && npm ci --no-audit --no-fund --loglevel=error)
 
 step "build the CLI"

@@ -19,17 +19,7 @@ step() { echo "== viewer: $* ($(( $(date +%s) - start )) s)"; }
 
 step "toolchain pieces"
 rustup target list --installed | grep -qx wasm32-unknown-unknown || rustup target add wasm32-unknown-unknown
-missing=()
-[ -x "${CHROMIUM:-/usr/bin/chromium}" ] || missing+=(chromium)
-command -v node >/dev/null || missing+=(nodejs)
-command -v npm >/dev/null || missing+=(npm)
-if [ ${#missing[@]} -gt 0 ]; then
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update -qq
-  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
-"${CHROMIUM:-/usr/bin/chromium}" --version
-echo "node $(node --version)"
+. "$root/scripts/browser-tools.sh"
 
 # The own-workspace crate uses its own target directory.
 unset CARGO_TARGET_DIR RUSTFLAGS CARGO_BUILD_TARGET
