@@ -450,6 +450,12 @@ fn mesh_shape(
 /// [`CliError::Usage`] when a shape has no patch to draw (e.g. a polar net
 /// of 2 links at depth 0 or 1: its first ring needs 5 links, level 2).
 pub fn drawable(name: &str, shape: &Shape, depth: u32) -> Result<(), CliError> {
+    if shape.patches.is_empty() && shape.scheme == "mesh" {
+        return Err(CliError::Usage(format!(
+            "{name}: no patch to draw: the surface is empty (every face a hole, or \
+             dropped by the boundary rule)"
+        )));
+    }
     if shape.patches.is_empty() {
         return Err(CliError::Usage(format!(
             "{name}: no patch to draw under {} at depth {depth} (a C2PS ring needs 5 links: \

@@ -1041,7 +1041,8 @@ fn an_empty_surface_is_an_error() {
         assert_eq!(run.code, Some(2), "{command}: {}", run.stderr);
         assert_eq!(run.stderr.lines().count(), 1, "{command}: {}", run.stderr);
         assert!(
-            run.stderr.contains("no patch to draw"),
+            run.stderr
+                .contains("no patch to draw: the surface is empty"),
             "{command}: {}",
             run.stderr
         );
