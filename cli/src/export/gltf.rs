@@ -280,22 +280,15 @@ fn push_attribute(
         bin.len() - offset,
         json::buffer::Target::ArrayBuffer,
     );
-    root.push(json::Accessor {
-        buffer_view: Some(view),
-        byte_offset: None,
-        count: USize64(data.len() as u64),
-        component_type: Valid(json::accessor::GenericComponentType(
-            json::accessor::ComponentType::F32,
-        )),
-        extensions: None,
-        extras: Default::default(),
-        type_: Valid(json::accessor::Type::Vec3),
+    push_accessor(
+        root,
+        view,
+        data.len(),
+        json::accessor::ComponentType::F32,
+        json::accessor::Type::Vec3,
         min,
         max,
-        name: None,
-        normalized: false,
-        sparse: None,
-    })
+    )
 }
 
 /// Appends triangle indices as a view (`ELEMENT_ARRAY_BUFFER`) and an
@@ -317,18 +310,37 @@ fn push_indices(
         bin.len() - offset,
         json::buffer::Target::ElementArrayBuffer,
     );
+    push_accessor(
+        root,
+        view,
+        indices.len(),
+        json::accessor::ComponentType::U32,
+        json::accessor::Type::Scalar,
+        None,
+        None,
+    )
+}
+
+/// Appends an accessor of `count` elements over the whole of `view`.
+fn push_accessor(
+    root: &mut json::Root,
+    view: json::Index<json::buffer::View>,
+    count: usize,
+    component: json::accessor::ComponentType,
+    type_: json::accessor::Type,
+    min: Option<json::Value>,
+    max: Option<json::Value>,
+) -> json::Index<json::Accessor> {
     root.push(json::Accessor {
         buffer_view: Some(view),
         byte_offset: None,
-        count: USize64(indices.len() as u64),
-        component_type: Valid(json::accessor::GenericComponentType(
-            json::accessor::ComponentType::U32,
-        )),
+        count: USize64(count as u64),
+        component_type: Valid(json::accessor::GenericComponentType(component)),
         extensions: None,
         extras: Default::default(),
-        type_: Valid(json::accessor::Type::Scalar),
-        min: None,
-        max: None,
+        type_: Valid(type_),
+        min,
+        max,
         name: None,
         normalized: false,
         sparse: None,
