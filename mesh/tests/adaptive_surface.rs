@@ -201,15 +201,28 @@ fn closed_inputs_are_covered_and_tessellate_closed_in_both_modes() {
     }
 }
 
+/// A grid with one boundary and one interior hole of three faces, and a
+/// semi-sharp crease.
+fn holed_grid() -> MeshInput {
+    let mut m = samples::grid(6, 6);
+    m.tags.holes = vec![14, 15, 21];
+    m.tags.creases.push(crease(9, 10, 2.0));
+    m
+}
+
+/// A grid with a hole at its corner (the hole merges with the boundary).
+fn corner_hole_grid() -> MeshInput {
+    let mut m = samples::grid(4, 4);
+    m.tags.holes = vec![0];
+    m
+}
+
 #[test]
 fn open_inputs_keep_their_boundary_and_hole_loops() {
-    let mut holed = samples::grid(6, 6);
-    holed.tags.holes = vec![14, 15, 21];
-    holed.tags.creases.push(crease(9, 10, 2.0));
+    let holed = holed_grid();
     let mut fan = samples::extraordinary_disk(5, 3);
     fan.tags.creases.push(crease(0, 1, 10.0));
-    let mut corner_hole = samples::grid(4, 4);
-    corner_hole.tags.holes = vec![0];
+    let corner_hole = corner_hole_grid();
     let cases: Vec<(&str, MeshInput, usize)> = vec![
         ("grid", samples::grid(4, 3), 1),
         // One boundary and one interior hole of three faces.
@@ -262,11 +275,8 @@ fn open_grids_boundary_is_the_image_of_the_input_boundary_and_holes() {
     // tessellation boundary vertex must lie on an input boundary edge
     // (round-off: 1e-12) and the boundary lengths must agree (1e-9: a few
     // hundred edges of round-off each): no piece missing, none added.
-    let mut holed = samples::grid(6, 6);
-    holed.tags.holes = vec![14, 15, 21];
-    holed.tags.creases.push(crease(9, 10, 2.0));
-    let mut corner_hole = samples::grid(4, 4);
-    corner_hole.tags.holes = vec![0];
+    let holed = holed_grid();
+    let corner_hole = corner_hole_grid();
     for (name, m) in [
         ("grid", samples::grid(4, 3)),
         ("grid with holes and a crease", holed),
