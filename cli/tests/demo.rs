@@ -184,13 +184,37 @@ fn demo_meshes_are_closed_surfaces() {
         saved.as_object_mut().unwrap().remove("times_ms");
         assert_eq!(fresh["summary"], saved, "{name}");
     }
-    // The plain cube needed the refinement step, the rounded one did not.
+    // Neither cube takes a whole-mesh step: the plain cube's six faces are
+    // refined (each next to four valence-3 points) and its EG caps are one
+    // level in, their rings from level 2; the rounded cube's caps are on
+    // its own faces.
     let summary = |n: &str| -> serde_json::Value {
         serde_json::from_slice(&std::fs::read(out.join(format!("{n}.summary.json"))).unwrap())
             .unwrap()
     };
-    assert_eq!(summary("cube")["refinement_steps"], 1);
+    let levels = |n: &str| -> Vec<u64> {
+        summary(n)["patches_per_level"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_u64().unwrap())
+            .collect()
+    };
+    assert_eq!(summary("cube")["refinement_steps"], 0);
+    assert_eq!(
+        summary("cube")["needed_refinement"]
+            .as_array()
+            .unwrap()
+            .len(),
+        6
+    );
+    assert_eq!(levels("cube")[..2], [0, 0]);
     assert_eq!(summary("rounded-cube")["refinement_steps"], 0);
+    assert_eq!(
+        summary("rounded-cube")["needed_refinement"],
+        serde_json::json!([])
+    );
+    assert!(levels("rounded-cube")[1] > 0);
 }
 
 #[test]

@@ -267,7 +267,8 @@ fn json_patches_equal_the_library() {
 #[test]
 fn summary_reports_refinement_caps_and_reasons() {
     let dir = tempdir();
-    // The plain cube: every face next to two valence-3 points, one step.
+    // The plain cube: every face next to four valence-3 points, refined
+    // adaptively (no whole-mesh step); the caps one level in.
     let path = write(
         dir.path(),
         "cube.obj",
@@ -275,7 +276,8 @@ fn summary_reports_refinement_caps_and_reasons() {
     );
     let out = surface(&["--depth", "1"], s(&path), None);
     let sum = &out["summary"];
-    assert_eq!(sum["refinement_steps"], 1);
+    assert_eq!(sum["refinement_steps"], 0);
+    assert_eq!(sum["fallbacks"], json!([]));
     let needed = sum["needed_refinement"].as_array().unwrap();
     assert_eq!(needed.len(), 6);
     for (k, f) in needed.iter().enumerate() {
@@ -288,15 +290,15 @@ fn summary_reports_refinement_caps_and_reasons() {
         sum["caps"],
         json!([{"scheme": "eg", "valence": 3, "count": 8}])
     );
-    // The triangle-and-pentagon prism needs two steps; caps at face centres
-    // name their face.
+    // The triangle-and-pentagon prism: caps at face centres (two levels
+    // in) name their face.
     let path = write(
         dir.path(),
         "tp.obj",
         &obj_text(&samples::triangle_and_pentagon_mesh(), Corners::Plain),
     );
     let out = surface(&["--depth", "1"], s(&path), None);
-    assert_eq!(out["summary"]["refinement_steps"], 2);
+    assert_eq!(out["summary"]["refinement_steps"], 0);
     assert!(out["caps"]
         .as_array()
         .unwrap()
@@ -1051,7 +1053,7 @@ fn an_empty_surface_is_an_error() {
 }
 
 /// The summary says per level how many patches there are, and why a cap
-/// fell back: an EG configuration with a crease in it.
+/// fell back: an EG configuration with an infinitely sharp crease in it.
 #[test]
 fn summary_reports_levels_and_fallbacks() {
     let dir = tempdir();
@@ -1064,11 +1066,22 @@ fn summary_reports_levels_and_fallbacks() {
         let idx: Vec<String> = f.iter().map(|v| (v + 1).to_string()).collect();
         obj.push_str(&format!("f {}\n", idx.join(" ")));
     }
-    // A crease on the first edge of the first face (0-based vertex numbers).
-    obj.push_str(&format!(
-        "t crease 2/1/0 {} {} 2.0\n",
-        m.faces[0][0], m.faces[0][1]
-    ));
+    // An infinitely sharp crease on an edge at an extraordinary point (0-based
+    // vertex numbers; a semi-sharp one only holds the cap off until it has
+    // decayed, one further away only until the cap's c-net is clear of it).
+    let mut valence = vec![0; m.vertices.len()];
+    for &v in m.faces.iter().flatten() {
+        valence[v as usize] += 1;
+    }
+    let (v, w) = m
+        .faces
+        .iter()
+        .find_map(|f| {
+            let k = f.iter().position(|&v| valence[v as usize] != 4)?;
+            Some((f[k], f[(k + 1) % f.len()]))
+        })
+        .unwrap();
+    obj.push_str(&format!("t crease 2/1/0 {v} {w} 10.0\n"));
     let input = dir.path().join("beams.obj");
     std::fs::write(&input, obj).unwrap();
     let out = dir.path().join("beams.json");

@@ -465,7 +465,7 @@ impl<R: Real> Evaluator<R> {
         let center = self.work[e.center as usize].0;
         let nodes = &self.cnet[..6 * n];
         let depth = plan.options.depth;
-        let level0 = plan.steps.len() as u32;
+        let level0 = e.level;
         let emit = |sink: &mut dyn SurfaceSink<R>,
                     m: u32,
                     k: usize,

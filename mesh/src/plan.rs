@@ -16,19 +16,22 @@
 //!    regular: its c-net exists, docs/math/eg.md §1) is an EG cap for n = 3, 5 and
 //!    for n = 6..10 with a rule table, else a Catmull-Clark cap, over its n
 //!    faces;
-//! 4. in a mesh without tags, when a reason a face has no patch can be
-//!    cured by refinement, the whole mesh is refined once (Catmull-Clark,
-//!    C²PS at poles) and analysed again — at most [`MAX_STEPS`] times: one
-//!    step makes every face a quad and separates extraordinary points, but a
-//!    quad can then hold two of them at opposite corners (an old vertex and
-//!    the centre of a non-quad face), which a second step separates;
+//! 4. in a mesh without tags, when a polar fan's C²PS configuration is
+//!    incomplete (links 1 and 2 are there, link 3 or the rings' regularity
+//!    is not) and one step completes it, the whole mesh is refined once
+//!    (Catmull-Clark, C²PS at poles) and analysed again — at most
+//!    [`MAX_STEPS`] times;
 //! 5. every face left is refined adaptively with OpenSubdiv's rules
-//!    ([`crate::adaptive`]): nothing is left uncovered.
+//!    ([`crate::adaptive`]): nothing is left uncovered. Where that
+//!    refinement separates an extraordinary point from every other feature
+//!    (its c-net appears, as after one step at a cube's corners, or two at
+//!    a triangle's centre), rule 3 applies there: a cap (EG or Catmull-Clark)
+//!    over the faces around it at that level.
 //!
 //! With [`PlanOptions::catmull_clark`] every cap is a Catmull-Clark cap (the
 //! papers' baseline): rule 2 is skipped (a fan's triangles are non-quad faces,
-//! refined by a Catmull-Clark step; the pole becomes an extraordinary point of
-//! the same valence) and rule 3 always picks Catmull-Clark.
+//! refined adaptively; the pole becomes an extraordinary point of the same
+//! valence) and rule 3 always picks Catmull-Clark.
 
 use crate::adaptive::base::{plain_base, tagged_base, TaggedBase};
 use crate::adaptive::refine::Rules;
@@ -41,7 +44,6 @@ use crate::input::MeshInput;
 use crate::refine::{refine, PolarSeed};
 use crate::stencil::StencilTable;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
-use alloc::collections::BTreeSet;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::eg::RuleTable;
@@ -86,6 +88,21 @@ pub struct PlanOptions<'t> {
     /// (The baseline the papers compare C²PS and EG with; `eg_tables` are
     /// then unused.)
     pub catmull_clark: bool,
+}
+
+impl PlanOptions<'_> {
+    /// The cap of an extraordinary point of valence `n`: EG with the
+    /// built-in rules (n = 3, 5) or the table `eg_tables[i]` (`Some(i)`),
+    /// else Catmull-Clark.
+    pub fn cap_scheme(&self, n: usize) -> (Scheme, Option<usize>) {
+        let table = self.eg_tables.iter().position(|t| t.valence() == n);
+        match n {
+            _ if self.catmull_clark => (Scheme::CatmullClark, None),
+            3 | 5 => (Scheme::Eg, None),
+            6..=10 if table.is_some() => (Scheme::Eg, table),
+            _ => (Scheme::CatmullClark, None),
+        }
+    }
 }
 
 impl Default for PlanOptions<'_> {
@@ -164,6 +181,10 @@ pub struct EvPlan {
     pub sectors: Vec<FaceChart>,
     /// Index into [`PlanOptions::eg_tables`] for n = 6..10.
     pub table: Option<usize>,
+    /// Refinement level of its sectors' faces below the input (the
+    /// refinement steps, and the adaptive refinement's levels for a cap it
+    /// made): the sectors are `2^-level` of an input face across.
+    pub level: u32,
 }
 
 /// A face without a patch.
@@ -198,8 +219,9 @@ pub struct SurfacePlan<'t> {
     pub ev: Vec<EvPlan>,
     /// Faces left without a patch (input faces, each once).
     pub uncovered: Vec<UncoveredFace>,
-    /// Input faces whose neighbourhood made the refinement step necessary,
-    /// with the first reason found.
+    /// Input faces that needed refinement, with the first reason found:
+    /// those that made the whole-mesh step necessary when one was taken,
+    /// else those refined adaptively.
     pub needed_refinement: Vec<UncoveredFace>,
     /// Vertices of the analysed level where a cap's configuration (a polar
     /// fan, an extraordinary point) is but no cap was made, and why; their
@@ -287,10 +309,17 @@ impl<'t> SurfacePlan<'t> {
                 fallbacks: Vec::new(),
             },
         };
-        // Whole-mesh steps only for meshes without tags: the step has no
-        // creasing rules.
+        // Whole-mesh steps only for meshes without tags (the step has no
+        // creasing rules), and only for a polar fan whose C²PS
+        // configuration a step completes (the step refines poles by
+        // C²PS); everything else is refined adaptively, EG caps included.
         while let Some(t) = level_topo.as_ref().filter(|_| tagged.is_none()) {
+            let polar_pending = !options.catmull_clark
+                && pass.fallbacks.iter().any(|&(v, r)| {
+                    r == Reason::PolarIncomplete && polar_config(t, v as usize, None, false).is_ok()
+                });
             if (steps.len() as u32) >= MAX_STEPS
+                || !polar_pending
                 || !pass
                     .uncovered
                     .iter()
@@ -324,6 +353,9 @@ impl<'t> SurfacePlan<'t> {
             pole_steps = new_pole_steps;
             pass = analyse(&next, &options, None);
             level_topo = Some(next);
+        }
+        if steps.is_empty() {
+            needed = uncovered_list(&pass.uncovered, &charts, false);
         }
         let vertices = level_topo
             .as_ref()
@@ -451,6 +483,7 @@ impl<'t> SurfacePlan<'t> {
                 nodes: e.nodes.clone(),
                 sectors,
                 table: *table,
+                level: self.steps.len() as u32,
             });
         }
     }
@@ -471,22 +504,14 @@ impl<'t> SurfacePlan<'t> {
                     chaikin: base.chaikin,
                     smooth_triangles: base.smooth_triangles,
                 },
+                caps: true,
             },
             first,
         );
         for i in 0..a.points.rows.len() {
             self.phantoms.push_row(a.points.rows.row(i));
         }
-        let edges: BTreeSet<(u32, u32)> = a
-            .patches
-            .iter()
-            .flat_map(|p| {
-                (0..4).map(move |k| {
-                    let (x, y) = (p.corners[k], p.corners[(k + 1) % 4]);
-                    (x.min(y), x.max(y))
-                })
-            })
-            .collect();
+        let edges = a.edges();
         // Level-0 patches: the analysed face's corners are its grid's inner
         // points.
         for r in self.regular.iter_mut().filter(|r| r.level == 0) {
@@ -515,6 +540,28 @@ impl<'t> SurfacePlan<'t> {
                 level: p.level,
                 hole: p.hole,
                 hole_point: p.hole_point,
+            });
+        }
+        for cap in &a.caps {
+            let sectors: Vec<FaceChart> = cap.sectors.iter().flatten().copied().collect();
+            let n = sectors.len();
+            // A vertex of the analysed level whose cap came a level or more
+            // further in has not fallen back.
+            let origin = a.points.vertex_origin(cap.center);
+            self.fallbacks.retain(|&(v, _)| Some(v) != origin);
+            // Named by the input vertex it is the child of, else by the
+            // input face whose centre (or whose centre's child) it is.
+            let vertex = origin.filter(|&v| (v as usize) < self.input_vertices);
+            let (scheme, table) = self.options.cap_scheme(n);
+            self.ev.push(EvPlan {
+                vertex,
+                face: vertex.is_none().then_some(sectors[0].face),
+                scheme,
+                center: cap.center,
+                nodes: cap.nodes.clone(),
+                sectors,
+                table,
+                level: self.steps.len() as u32 + cap.level,
             });
         }
         self.last_holes.extend(a.holes.iter().map(|h| h.chart));
@@ -702,15 +749,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
                     vertex_reason[v] = Some(Reason::Overlap);
                     continue;
                 }
-                let (scheme, table) = match n {
-                    _ if options.catmull_clark => (Scheme::CatmullClark, None),
-                    3 | 5 => (Scheme::Eg, None),
-                    6..=10 => match options.eg_tables.iter().position(|t| t.valence() == n) {
-                        Some(i) => (Scheme::Eg, Some(i)),
-                        None => (Scheme::CatmullClark, None),
-                    },
-                    _ => (Scheme::CatmullClark, None),
-                };
+                let (scheme, table) = options.cap_scheme(n);
                 pass.ev.push((e, scheme, table));
             }
             Err(r) => vertex_reason[v] = Some(r),

@@ -324,8 +324,11 @@ fn open_grids_boundary_is_the_image_of_the_input_boundary_and_holes() {
 
 #[test]
 fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
-    // Two-beam corner: EG caps at valence 3 and 5. A crease on an edge of
-    // one extraordinary point's 1-ring takes that cap away, no other.
+    // Two-beam corner: EG caps at valence 3 and 5. An infinitely sharp
+    // crease on an edge of one extraordinary point's 1-ring takes that cap
+    // away, no other; a semi-sharp one (2) holds it off until its sharpness
+    // has decayed (level 2), the levels above it Catmull-Clark with the
+    // crease rules.
     let m = samples::two_beam_corner();
     let (plain, _) = plan_and_evaluate(&m, 3, false);
     let eg = |p: &SurfacePlan<'_>| p.ev.iter().filter(|e| e.scheme == Scheme::Eg).count();
@@ -340,7 +343,7 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
         })
         .unwrap();
     let mut tagged = m.clone();
-    tagged.tags.creases.push(crease(v, w, 2.0));
+    tagged.tags.creases.push(crease(v, w, 10.0));
     let (plan, c) = plan_and_evaluate(&tagged, 3, false);
     assert!(
         plan.ev.iter().all(|e| e.vertex != Some(v)),
@@ -352,7 +355,29 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
         eg(&plan),
         eg(&plain)
     );
+    // The caps whose faces the crease only neighbours come back a level
+    // further in, where it is out of their c-nets' reach.
+    let vertices = |p: &SurfacePlan<'_>| {
+        let mut v: Vec<Option<u32>> = p.ev.iter().map(|e| e.vertex).collect();
+        v.sort();
+        v
+    };
+    let mut expected = vertices(&plain);
+    expected.retain(|&x| x != Some(v));
+    assert_eq!(vertices(&plan), expected);
     check_coverage("two-beam corner with a crease", &tagged, &plan, &c);
+    let mut semi = m.clone();
+    semi.tags.creases.push(crease(v, w, 2.0));
+    let (plan, c) = plan_and_evaluate(&semi, 3, false);
+    let at_v: Vec<u32> = plan
+        .ev
+        .iter()
+        .filter(|e| e.vertex == Some(v))
+        .map(|e| e.level)
+        .collect();
+    assert_eq!(at_v, [2], "one cap at v, below the crease's two levels");
+    assert_eq!(eg(&plan), eg(&plain));
+    check_coverage("two-beam corner with a semi-sharp crease", &semi, &plan, &c);
     // A globe: both poles keep C²PS when a crease runs along the equator.
     let mut globe = samples::globe(8, 6);
     let eq: Vec<u32> = (0..globe.vertices.len() as u32)
@@ -418,4 +443,52 @@ fn joins_across_level_transitions_are_c2_and_infinitely_sharp_creases_c0() {
         wn > 1e-2,
         "an infinitely sharp crease is a visible C0 join: normal jump {wn:e}"
     );
+}
+
+/// Refinement stays local: a plain cube (every face next to four valence-3
+/// points) beside a 16×16 torus. Only the cube's faces are refined, no
+/// whole-mesh step is taken, each torus face keeps its one level-0
+/// B-spline patch, and the cube's corners get their caps one level in (EG
+/// by default, Catmull-Clark with every cap Catmull-Clark), whose rings
+/// meet the refined faces around them closed and oriented.
+#[test]
+fn refinement_stays_local_and_caps_come_one_level_in() {
+    let cube = samples::cube();
+    let torus = samples::torus(16, 16);
+    let mut m = cube.clone();
+    let base = m.vertices.len() as u32;
+    m.vertices
+        .extend(torus.vertices.iter().map(|p| [p[0] + 10.0, p[1], p[2]]));
+    m.faces.extend(
+        torus
+            .faces
+            .iter()
+            .map(|f| f.iter().map(|&v| v + base).collect::<Vec<u32>>()),
+    );
+    for (cc, scheme) in [(false, Scheme::Eg), (true, Scheme::CatmullClark)] {
+        let (plan, c) = plan_and_evaluate(&m, 3, cc);
+        assert!(plan.steps.is_empty(), "cc {cc}: a whole-mesh step");
+        let refined: Vec<u32> = plan.needed_refinement.iter().map(|u| u.face).collect();
+        assert_eq!(refined, [0, 1, 2, 3, 4, 5], "cc {cc}");
+        for f in 6..m.faces.len() as u32 {
+            let on_f: Vec<&capdiv_mesh::PatchRecord<f64>> =
+                c.patches.iter().filter(|p| p.face == f).collect();
+            assert_eq!(on_f.len(), 1, "cc {cc}: torus face {f}");
+            assert_eq!((on_f[0].kind, on_f[0].level), (PatchKind::Regular, 0));
+        }
+        let mut corners: Vec<(Option<u32>, u32, usize)> = plan
+            .ev
+            .iter()
+            .map(|e| {
+                assert_eq!(e.scheme, scheme, "cc {cc}");
+                (e.vertex, e.level, e.sectors.len())
+            })
+            .collect();
+        corners.sort();
+        let want: Vec<(Option<u32>, u32, usize)> = (0..8).map(|v| (Some(v), 1, 3)).collect();
+        assert_eq!(corners, want, "cc {cc}");
+        assert!(plan.fallbacks.is_empty(), "cc {cc}: {:?}", plan.fallbacks);
+        check_coverage("cube beside a torus", &m, &plan, &c);
+        is_closed_and_oriented(&tess(&c).faces).expect("closed and oriented");
+    }
 }

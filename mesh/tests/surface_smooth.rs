@@ -343,8 +343,9 @@ fn closed_quad_meshes_with_extraordinary_points() {
     }
 }
 
-/// The cube: adjacent valence-3 points, one refinement step; each input face
-/// holds 4 sector faces (its quadrants), each with a hole of (2^-depth/2)².
+/// The cube: adjacent valence-3 points, separated one level in by the
+/// adaptive refinement; each input face holds 4 sector faces (its
+/// quadrants), each with a hole of (2^-depth/2)².
 #[test]
 fn cube_after_refinement() {
     let depth = 4;
@@ -355,14 +356,14 @@ fn cube_after_refinement() {
     });
 }
 
-/// Triangles and pentagons: two steps. A non-quad face is tiled per corner
-/// sub-quad (its own square); after the second step its sector faces are the
-/// sub-quad's quadrants: a hole of (2^-depth/2)² at the face centre (valence
+/// Triangles and pentagons: caps two levels in. A non-quad face is tiled
+/// per corner sub-quad (its own square); at the second level its sector
+/// faces are the sub-quad's quadrants: a hole of (2^-depth/2)² at the face centre (valence
 /// = face size ≠ 4) and one at the input vertex if its valence ≠ 4. An input
 /// quad's sector faces are 1/4 of its side: holes (2^-depth/4)² at its
 /// extraordinary corners.
 #[test]
-fn triangles_and_pentagons_after_two_steps() {
+fn triangles_and_pentagons_caps_two_levels_in() {
     let depth = 3;
     let m = samples::triangle_and_pentagon_mesh();
     let val = face_counts(&m);

@@ -64,7 +64,7 @@ pub fn mesh_samples() -> Vec<(&'static str, &'static str, MeshInput)> {
         ),
         (
             "cube",
-            "the plain cube: valence-3 neighbours, needs the refinement step",
+            "the plain cube: valence-3 neighbours, EG caps one refinement level in",
             samples::cube(),
         ),
         (
@@ -309,7 +309,7 @@ fn one_mesh(
     out += &w(
         "refinement",
         format!(
-            "{} step(s), needed by {} input faces; {} uncovered",
+            "{} whole-mesh step(s); {} input faces refined; {} uncovered",
             s.refinement_steps,
             s.needed_refinement.len(),
             s.uncovered.len()

@@ -521,9 +521,11 @@ pub struct Summary {
     pub patches: PatchCounts,
     /// Caps per scheme and valence.
     pub caps: Vec<CapCount>,
-    /// Global refinement steps taken (0..=2).
+    /// Whole-mesh refinement steps taken (0..=2; only for a polar fan whose
+    /// C²PS configuration a step completes).
     pub refinement_steps: usize,
-    /// Input faces that made the first refinement step necessary.
+    /// Input faces that needed refinement: those that made the first
+    /// whole-mesh step necessary, else those refined adaptively.
     pub needed_refinement: Vec<FaceReason>,
     /// Input faces left without a patch.
     pub uncovered: Vec<FaceReason>,
@@ -921,9 +923,21 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>, naming: &Naming)
     );
     let _ = writeln!(
         t,
-        "  refinement   {}{}",
-        count(s.refinement_steps, "step", "steps"),
-        faces_by_reason(&s.needed_refinement, " needed by", naming)
+        "  refinement   {}",
+        if s.refinement_steps > 0 {
+            format!(
+                "{}{}",
+                count(s.refinement_steps, "whole-mesh step", "whole-mesh steps"),
+                faces_by_reason(&s.needed_refinement, " needed by", naming)
+            )
+        } else if s.needed_refinement.is_empty() {
+            "none".to_string()
+        } else {
+            format!(
+                "adaptive{}",
+                faces_by_reason(&s.needed_refinement, ",", naming)
+            )
+        }
     );
     let _ = writeln!(
         t,

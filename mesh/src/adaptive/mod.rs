@@ -6,7 +6,10 @@
 //! ([`regular`]) is a uniform B-spline patch there; around an irregular
 //! vertex the faces refine into rings converging to it until `depth`, and
 //! the last ring's hole is closed to the vertex's limit point; semi-sharp
-//! features refine until their sharpness has decayed.
+//! features refine until their sharpness has decayed. Where the refinement
+//! has separated an extraordinary vertex from every other feature (its
+//! c-net is there, [`cnet`]), the faces around it become a cap (EG, or
+//! Catmull-Clark where EG has no rule) instead of rings.
 //!
 //! Each face is refined inside its own neighbourhood (the faces around the
 //! vertices of the faces around its corners), which is all the refinement
@@ -14,16 +17,19 @@
 //! ([`points`]), so the patches of neighbouring faces meet exactly.
 
 pub mod base;
+pub mod cnet;
 pub mod crease;
 pub mod level;
 pub mod points;
 pub mod refine;
 pub mod regular;
 
-use crate::chart::FaceChart;
+use crate::chart::{Affine, FaceChart};
 use alloc::collections::{BTreeMap, BTreeSet};
 use alloc::vec;
 use alloc::vec::Vec;
+use cnet::level_cnet;
+use hashbrown::HashMap;
 use level::Level;
 use points::{Key, Points};
 use refine::{limit_point, refine, Rules};
@@ -77,11 +83,42 @@ pub struct LastHole {
     pub point: u32,
 }
 
+/// A cap around an extraordinary vertex that the refinement has separated
+/// from every other feature ([`cnet`]): the faces around the vertex at that
+/// level are its sectors.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AdaptiveCap {
+    /// Its centre (working point).
+    pub center: u32,
+    /// The level of its sectors' faces.
+    pub level: u32,
+    /// `6n` c-net nodes (working points), docs/math/eg.md §1 order.
+    pub nodes: Vec<u32>,
+    /// Per sector: its face's corners (working points) from the centre:
+    /// (0,0) (1,0) (1,1) (0,1).
+    pub faces: Vec<[u32; 4]>,
+    /// Per sector: from sector coordinates to the input face, once the
+    /// sector's face has been reached (every one is, see [`cover`]).
+    pub sectors: Vec<Option<FaceChart>>,
+}
+
+impl AdaptiveCap {
+    /// Whether every sector's face was reached.
+    pub fn is_complete(&self) -> bool {
+        self.sectors.iter().all(Option::is_some)
+    }
+}
+
 /// The adaptive refinement of some faces.
 #[derive(Clone, Debug)]
 pub struct Adaptive {
     /// The patches.
     pub patches: Vec<AdaptivePatch>,
+    /// Caps (complete ones; see [`AdaptiveCap`]).
+    pub caps: Vec<AdaptiveCap>,
+    /// Per centre point looked at: its cap in `caps`, or `None` when it has
+    /// no c-net.
+    cap_at: HashMap<u32, Option<usize>>,
     /// The points they need beyond the level's own vertices.
     pub points: Points,
     /// The last holes around irregular vertices, one face of the
@@ -105,6 +142,9 @@ pub struct AdaptiveOptions {
     pub depth: u32,
     /// The rules that are options.
     pub rules: Rules,
+    /// An extraordinary vertex gets a cap where its c-net appears (else
+    /// rings of this refinement converge to it).
+    pub caps: bool,
 }
 
 /// Covers `roots` (faces of `base` with where they lie in the input).
@@ -117,6 +157,8 @@ pub fn cover(
 ) -> Adaptive {
     let mut out = Adaptive {
         patches: Vec::new(),
+        caps: Vec::new(),
+        cap_at: HashMap::new(),
         points: Points::new(first_point),
         holes: Vec::new(),
         hole_conflicts: 0,
@@ -126,8 +168,79 @@ pub fn cover(
     for &(f, chart) in roots {
         visit(base, f as usize, 0, chart, false, options, &mut out);
     }
+    // Every face around a cap's centre is reached at the cap's level (their
+    // parents all have the centre's parent as an irregular corner, and no
+    // parent is a last hole above the caps' deepest level); a cap that
+    // missed one would leave its faces bare, so they are reported.
+    let (complete, partial): (Vec<_>, Vec<_>) =
+        out.caps.drain(..).partition(AdaptiveCap::is_complete);
+    out.caps = complete;
+    out.unresolved_faces.extend(
+        partial
+            .iter()
+            .flat_map(|c| c.sectors.iter().flatten().map(|s| s.face)),
+    );
     mark_neighbours(&mut out);
     out
+}
+
+/// If face `f` at `level` is a sector of a cap: records its chart there
+/// (making the cap at its first face) and returns true.
+fn cap_sector(
+    m: &Level,
+    f: usize,
+    level: u32,
+    chart: FaceChart,
+    options: AdaptiveOptions,
+    out: &mut Adaptive,
+) -> bool {
+    // Above the first level whose faces may be last holes, so that every
+    // face around the centre is reached (see `cover`); level 0 is the fast
+    // path's.
+    if !options.caps
+        || level == 0
+        || level > options.depth.max(MIN_HOLE_LEVEL)
+        || m.face(f).len() != 4
+    {
+        return false;
+    }
+    let (bits, semi) = irregular_corners(m, f);
+    if semi || bits.count_ones() != 1 {
+        return false;
+    }
+    let k = bits.trailing_zeros() as usize;
+    let c = m.face_start[f] + k as u32;
+    let centre = m.point[m.corner_vertex[c as usize] as usize];
+    let at = match out.cap_at.get(&centre) {
+        Some(&at) => at,
+        None => {
+            let at = level_cnet(m, c).map(|net| {
+                out.caps.push(AdaptiveCap {
+                    center: centre,
+                    level,
+                    sectors: vec![None; net.valence],
+                    nodes: net.nodes,
+                    faces: net.faces,
+                });
+                out.caps.len() - 1
+            });
+            out.cap_at.insert(centre, at);
+            at
+        }
+    };
+    let Some(cap) = at.map(|i| &mut out.caps[i]) else {
+        return false;
+    };
+    let diagonal = m.point[m.corner_vertex[m.next(m.next(c)) as usize] as usize];
+    let Some(j) = cap.faces.iter().position(|q| q[2] == diagonal) else {
+        return false;
+    };
+    cap.sectors[j] = Some(FaceChart {
+        face: chart.face,
+        corner: chart.corner,
+        map: chart.map.compose(&Affine::rotation(k)),
+    });
+    true
 }
 
 /// Irregular corners of face `f` (bit per corner) and whether a semi-sharp
@@ -184,6 +297,9 @@ fn visit(
             hole_point: NONE,
             finer: 0,
         });
+        return;
+    }
+    if cap_sector(m, f, level, chart, options, out) {
         return;
     }
     if let Some(v) = final_hole(m, f, level, options).filter(|_| may_close) {
@@ -302,16 +418,19 @@ fn mark_neighbours(out: &mut Adaptive) {
         }
     }
     out.hole_conflicts = conflicts;
-    let edges: BTreeSet<(u32, u32)> = out
-        .patches
+    let edges = out.edges();
+    let cap_edges: BTreeSet<(u32, u32)> = out
+        .caps
         .iter()
-        .flat_map(|p| (0..4).map(move |k| key(p.corners[k], p.corners[(k + 1) % 4])))
+        .flat_map(|c| &c.faces)
+        .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4])))
         .collect();
     let mut jumps = 0;
     for p in &mut out.patches {
         for k in 0..4 {
             let (a, b) = (p.corners[k], p.corners[(k + 1) % 4]);
-            if finer_across(&out.points, &edges, a, b) {
+            // Across a cap's face: its first ring is finer.
+            if cap_edges.contains(&key(a, b)) || finer_across(&out.points, &edges, a, b) {
                 p.finer |= 1 << k;
             } else if let Some(((a1, m), (m2, b1))) = halves(&out.points, a, b) {
                 // Not met by halves: is it met by quarters?
@@ -324,6 +443,20 @@ fn mark_neighbours(out: &mut Adaptive) {
         }
     }
     out.level_jumps = jumps;
+}
+
+impl Adaptive {
+    /// The edges of the patches and of the caps' faces, by their end points
+    /// (smaller first).
+    pub fn edges(&self) -> BTreeSet<(u32, u32)> {
+        let key = |a: u32, b: u32| (a.min(b), a.max(b));
+        self.patches
+            .iter()
+            .map(|p| p.corners)
+            .chain(self.caps.iter().flat_map(|c| c.faces.iter().copied()))
+            .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4])))
+            .collect()
+    }
 }
 
 /// The child edges of edge `(a, b)`, if its points were made.

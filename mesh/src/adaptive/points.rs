@@ -4,6 +4,7 @@
 //! above), so two neighbourhoods that refine the same component share the
 //! point, and a patch edge can ask whether its neighbour is finer.
 
+use super::NONE;
 use crate::stencil::StencilTable;
 use alloc::vec::Vec;
 use hashbrown::HashMap;
@@ -28,6 +29,9 @@ pub enum Key {
 pub struct Points {
     base: u32,
     keys: HashMap<Key, u32>,
+    /// Per point made: the point it is the vertex child of ([`NONE`] for
+    /// the other kinds).
+    parent: Vec<u32>,
     /// Row `i` is point `base + i`.
     pub rows: StencilTable,
 }
@@ -38,6 +42,7 @@ impl Points {
         Points {
             base,
             keys: HashMap::new(),
+            parent: Vec::new(),
             rows: StencilTable::new(),
         }
     }
@@ -53,7 +58,24 @@ impl Points {
             return p;
         }
         let p = self.base + self.rows.push_row(row());
+        self.parent.push(match key {
+            Key::Vertex(v) => v,
+            _ => NONE,
+        });
         self.keys.insert(key, p);
         p
+    }
+
+    /// The point `p` descends from as a vertex child, child of a child…:
+    /// a point below `base` (a vertex of the level the refinement started
+    /// from), or `None` when the chain starts at an edge or face point.
+    pub fn vertex_origin(&self, mut p: u32) -> Option<u32> {
+        while p >= self.base {
+            p = *self.parent.get((p - self.base) as usize)?;
+            if p == NONE {
+                return None;
+            }
+        }
+        Some(p)
     }
 }
