@@ -20,6 +20,8 @@ const ui = {
   status: $('status'),
   legend: $('legend'),
   edit: $('edit'),
+  saveMesh: $('save-mesh'),
+  saveSurface: $('save-surface'),
 };
 
 const state = {
@@ -289,6 +291,31 @@ ui.shading.addEventListener('change', () => {
   });
 });
 ui.net.addEventListener('change', requestDraw);
+
+// ---- export: Wavefront OBJ downloads ----
+
+function sourceStem() {
+  const name = state.source.kind === 'text' ? state.source.name : state.viewer.summary().name;
+  return name.replace(/\.[^.]*$/, '') || 'mesh';
+}
+
+function download(name, text) {
+  const url = URL.createObjectURL(new Blob([text], { type: 'model/obj' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+ui.saveMesh.addEventListener('click', () => guarded(() => {
+  download(`${sourceStem()}-mesh.obj`, state.viewer.exportObj('mesh'));
+}));
+ui.saveSurface.addEventListener('click', () => guarded(() => {
+  download(`${sourceStem()}-surface.obj`, state.viewer.exportObj('surface'));
+}));
 ui.reset.addEventListener('click', () => guarded(() => {
   state.viewer.reset();
   uploadAll(false);
@@ -369,6 +396,20 @@ window.capdiv = {
   summary() {
     return state.viewer.summary();
   },
+  // The control net's edges as 'a-b' (a < b).
+  netEdges() {
+    const e = state.viewer.control().edges;
+    const out = [];
+    for (let k = 0; k < e.length; k += 2) out.push(`${Math.min(e[k], e[k + 1])}-${Math.max(e[k], e[k + 1])}`);
+    return out;
+  },
+  bounds() {
+    return state.viewer.bounds();
+  },
+  exportObj(what) {
+    return state.viewer.exportObj(what);
+  },
+
   // Edits control points `count` times (a ±1 % nudge of the box size along
   // x and back, cycling through points spread over the mesh and the point
   // of the largest cap); returns the edit-to-surface times in ms (`times`)

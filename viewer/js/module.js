@@ -77,6 +77,15 @@ export class Viewer {
     this.check(this.w.viewer_move_vertex(i, p[0], p[1], p[2]));
   }
 
+  // Wavefront OBJ text of the control mesh as edited ('mesh') or of the
+  // shown surface ('surface').
+  exportObj(what) {
+    const code = { mesh: 0, surface: 1 }[what];
+    if (code === undefined) throw new ModuleError(`export ${what}: mesh or surface`);
+    this.check(this.w.viewer_export_obj(code));
+    return this.text();
+  }
+
   rescale() {
     this.check(this.w.viewer_rescale());
   }

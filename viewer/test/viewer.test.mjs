@@ -61,6 +61,28 @@ async function dropFile(page, name, text) {
   await page.dispatchEvent('#view', 'drop', { dataTransfer: dt });
 }
 
+// The `v` and `f` lines of an OBJ text (faces 0-based, `i//n` read as i).
+function parseObj(text) {
+  const v = [];
+  const vn = [];
+  const f = [];
+  for (const line of text.split('\n')) {
+    const w = line.trim().split(/\s+/);
+    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
+    else if (w[0] === 'vn') vn.push(w.slice(1, 4).map(Number));
+    else if (w[0] === 'f') f.push(w.slice(1).map((c) => Number(c.split('/')[0]) - 1));
+  }
+  return { v, vn, f };
+}
+
+// Clicks a save button and returns the downloaded file's name and text.
+async function save(page, button) {
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click(button)]);
+  const path = await download.path();
+  const { readFile } = await import('node:fs/promises');
+  return { name: download.suggestedFilename(), text: await readFile(path, 'utf8') };
+}
+
 async function setNet(page, on) {
   if ((await page.isChecked('#net')) !== on) await page.click('#net');
 }
@@ -180,6 +202,42 @@ test('the viewer in headless chromium', async (t) => {
       const f = await changed(page, after, before);
       assert.ok(f > 0.005, `${f} of the pixels changed`);
       assert.match(await page.textContent('#edit'), /edit → surface [0-9.]+ ms/);
+
+      // Export: the edited control mesh reads back as the page's points and
+      // the net's edges; the surface as the shown surface.
+      const mesh = await save(page, '#save-mesh');
+      assert.equal(mesh.name, 'mushroom-mesh.obj');
+      const m = parseObj(mesh.text);
+      const control = await page.evaluate(() => {
+        const n = window.capdiv.controlPointCount();
+        return Array.from({ length: n }, (_, i) => window.capdiv.controlPoint(i));
+      });
+      assert.equal(m.v.length, control.length);
+      // The page holds f32 copies of the f64 points the OBJ has exactly.
+      m.v.forEach((p, i) => p.forEach((x, c) => assert.ok(Math.abs(x - control[i][c]) <= 1e-6 * Math.max(1, Math.abs(x)), `${i}.${c}`)));
+      assert.ok(Math.abs(m.v[top][2] - z1) < 1e-5, 'the moved pole');
+      const summary = await page.evaluate(() => window.capdiv.summary());
+      assert.equal(m.f.length, summary.faces);
+      const edges = new Set(await page.evaluate(() => window.capdiv.netEdges()));
+      const faceEdges = new Set();
+      for (const f of m.f) f.forEach((a, k) => { const b = f[(k + 1) % f.length]; faceEdges.add(`${Math.min(a, b)}-${Math.max(a, b)}`); });
+      assert.deepEqual([...faceEdges].sort(), [...edges].sort());
+      const surface = await save(page, '#save-surface');
+      assert.equal(surface.name, 'mushroom-surface.obj');
+      const sf = parseObj(surface.text);
+      assert.equal(sf.v.length, sf.vn.length);
+      assert.ok(sf.f.every((f) => f.length === 3 && f.every((i) => i >= 0 && i < sf.v.length)));
+      // Welded samples: fewer vertices than samples; every triangle kept
+      // but those welding makes degenerate (none expected; 1 % allowed).
+      assert.ok(sf.v.length < summary.surface_vertices);
+      assert.ok(sf.f.length <= summary.triangles && sf.f.length >= 0.99 * summary.triangles, `${sf.f.length} of ${summary.triangles}`);
+      // Its box is the surface's (exact f64 in the OBJ and from the module).
+      const bounds = await page.evaluate(() => window.capdiv.bounds());
+      for (let c = 0; c < 3; c++) {
+        const lo = Math.min(...sf.v.map((p) => p[c]));
+        const hi = Math.max(...sf.v.map((p) => p[c]));
+        assert.ok(Math.abs(lo - bounds.lo[c]) < 1e-9 && Math.abs(hi - bounds.hi[c]) < 1e-9, `axis ${c}`);
+      }
       await page.click('#reset');
       assert.ok((await changed(page, await pixels(page), before)) < 0.001, 'reset restores the surface');
       assert.deepEqual(errors, []);
