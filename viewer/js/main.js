@@ -29,6 +29,7 @@ const state = {
   renderer: null,
   camera: new Camera(),
   source: { kind: 'sample', index: 0 },
+  file: null,
   drag: null,
   pending: null,
   frame: 0,
@@ -81,6 +82,19 @@ function reloadSource() {
   if (state.source.kind === 'sample') state.viewer.loadSample(state.source.index, o);
   else state.viewer.loadText(state.source.text, o);
   afterLoad(true);
+}
+
+// The mesh list names what is shown: after a file, an entry with its name
+// (choosing it again reloads the file).
+function listFile(name) {
+  let o = ui.sample.querySelector('option[value="file"]');
+  if (!o) {
+    o = document.createElement('option');
+    o.value = 'file';
+    ui.sample.append(o);
+  }
+  o.textContent = name;
+  ui.sample.value = 'file';
 }
 
 function uploadAll(frame) {
@@ -258,14 +272,24 @@ ui.canvas.addEventListener('wheel', (ev) => {
 
 // ---- selectors ----
 
-ui.sample.addEventListener('change', () => {
-  guarded(() => {
-    const index = Number(ui.sample.value);
-    state.viewer.loadSample(index, options());
-    state.source = { kind: 'sample', index };
+function listedSource() {
+  return state.source.kind === 'sample' ? String(state.source.index) : 'file';
+}
+
+ui.sample.addEventListener('change', async () => {
+  const ok = await guarded(() => {
+    if (ui.sample.value === 'file') {
+      state.viewer.loadText(state.file.text, options());
+      state.source = state.file;
+    } else {
+      const index = Number(ui.sample.value);
+      state.viewer.loadSample(index, options());
+      state.source = { kind: 'sample', index };
+    }
     showMessage('');
     afterLoad(true);
   });
+  if (!ok) ui.sample.value = listedSource();
 });
 
 function optionSelector(el) {
@@ -339,6 +363,8 @@ async function loadFile(file) {
       throw e;
     }
     state.source = { kind: 'text', text, name: file.name };
+    state.file = state.source;
+    listFile(file.name);
     showMessage(`${file.name} loaded`, 'info');
     afterLoad(true);
   });

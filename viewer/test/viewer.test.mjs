@@ -61,6 +61,24 @@ async function dropFile(page, name, text) {
   await page.dispatchEvent('#view', 'drop', { dataTransfer: dt });
 }
 
+// Bounding box (canvas pixels) of the drawn pixels of a snapshot.
+function drawnBox(page, p) {
+  return page.evaluate(([i, w, h, bg]) => {
+    const d = window.__snapshots[i];
+    let [x0, y0, x1, y1] = [w, h, -1, -1];
+    for (let y = 0; y < h; y++) for (let x = 0; x < w; x++) {
+      const k = 4 * (y * w + x);
+      if (Math.abs(d[k] - bg[0]) + Math.abs(d[k + 1] - bg[1]) + Math.abs(d[k + 2] - bg[2]) > 12) {
+        x0 = Math.min(x0, x);
+        x1 = Math.max(x1, x);
+        y0 = Math.min(y0, y);
+        y1 = Math.max(y1, y);
+      }
+    }
+    return { x0, y0, x1, y1 };
+  }, [p.id, p.width, p.height, BACKGROUND]);
+}
+
 // The `v` and `f` lines of an OBJ text (faces 0-based, `i//n` read as i).
 function parseObj(text) {
   const v = [];
@@ -112,6 +130,9 @@ test('the viewer in headless chromium', async (t) => {
       assert.ok(fraction > 0.05, `surface covers ${fraction}`);
       assert.match(await page.textContent('#status'), /mushroom: 206 control points, 216 faces/);
       assert.equal(await page.isVisible('#message'), false);
+      // The shared default depth.
+      assert.equal(await page.inputValue('#depth'), '4');
+      assert.equal((await page.evaluate(() => window.capdiv.summary())).depth, 4);
     });
 
     await t.test('each shading changes the image', async () => {
@@ -169,10 +190,53 @@ test('the viewer in headless chromium', async (t) => {
       await dropFile(page, 'torus.obj', torus.join('\n'));
       await page.waitForFunction(() => document.getElementById('message').textContent === 'torus.obj loaded');
       assert.match(await page.textContent('#status'), /^torus\.obj: 48 control points, 48 faces/);
+      // The mesh list names the file, not the sample shown before.
+      assert.equal(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), 'torus.obj');
       assert.ok((await pixels(page)).surface > 0.03 * before.width * before.height);
       assert.deepEqual(errors, []);
       await page.selectOption('#sample', { label: 'mushroom' });
       await page.waitForFunction(() => /^mushroom/.test(document.getElementById('status').textContent));
+      assert.equal(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), 'mushroom');
+    });
+
+    await t.test('an empty surface is an error', async () => {
+      await setNet(page, false);
+      const before = await pixels(page);
+      // A quad whose only face is a hole: no patch.
+      await dropFile(page, 'hole.obj', 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt hole 1/0/0 0\n');
+      await page.waitForSelector('#message:not([hidden])');
+      assert.equal(await page.textContent('#message'),
+        'hole.obj: no patch to draw: the surface is empty (every face a hole, or dropped by the boundary rule)');
+      assert.equal(await page.getAttribute('#message', 'class'), 'error');
+      assert.ok((await changed(page, await pixels(page), before)) < 0.001);
+      assert.match(await page.textContent('#status'), /^mushroom/);
+      assert.equal(await page.$eval('#sample', (s) => s.selectedOptions[0].textContent), 'mushroom');
+      assert.deepEqual(errors, []);
+    });
+
+    await t.test('a mesh far from the origin is framed as at the origin', async () => {
+      await setNet(page, false);
+      // The mushroom (C²PS caps with hole fans at depth 4), and its control
+      // mesh moved by 1000 along every axis: framing depends on the surface
+      // only, so the drawn pixels have the same box, centred in the view.
+      const near = await pixels(page);
+      const a = await drawnBox(page, near);
+      const obj = await page.evaluate(() => window.capdiv.exportObj('mesh'));
+      const moved = obj.split('\n').map((l) => (l.startsWith('v ')
+        ? `v ${l.slice(2).split(' ').map((x) => Number(x) + 1000).join(' ')}` : l)).join('\n');
+      await dropFile(page, 'far.obj', moved);
+      await page.waitForFunction(() => document.getElementById('message').textContent === 'far.obj loaded');
+      const far = await pixels(page);
+      const b = await drawnBox(page, far);
+      // f32 positions near 1000 carry 6e-5 of rounding: well under a pixel.
+      for (const k of ['x0', 'y0', 'x1', 'y1']) assert.ok(Math.abs(a[k] - b[k]) <= 2, `${k}: ${a[k]} vs ${b[k]}`);
+      const [cx, cy] = [(b.x0 + b.x1) / 2 / far.width, (b.y0 + b.y1) / 2 / far.height];
+      assert.ok(Math.abs(cx - 0.5) < 0.1 && Math.abs(cy - 0.5) < 0.1, `centre at ${cx}, ${cy} of the view`);
+      const fill = Math.max((b.x1 - b.x0) / far.width, (b.y1 - b.y0) / far.height);
+      assert.ok(fill > 0.4 && fill < 1, `the surface spans ${fill} of the view`);
+      await page.selectOption('#sample', { label: 'mushroom' });
+      await page.waitForFunction(() => /^mushroom/.test(document.getElementById('status').textContent));
+      assert.deepEqual(errors, []);
     });
 
     await t.test('dragging a control point changes the surface', async () => {
@@ -310,7 +374,7 @@ test('the viewer in headless chromium', async (t) => {
 
     await t.test('edit-to-surface times per sample (printed)', async () => {
       const reps = Number(process.env.VIEWER_EDITS || 40);
-      const names = await page.$$eval('#sample option', (os) => os.map((o) => o.textContent));
+      const names = await page.$$eval('#sample option:not([value="file"])', (os) => os.map((o) => o.textContent));
       await page.selectOption('#depth', '4');
       await page.selectOption('#scheme', 'capdiv');
       const rows = [];
