@@ -13,6 +13,7 @@ const ui = {
   depth: $('depth'),
   grid: $('grid'),
   shading: $('shading'),
+  up: $('up'),
   net: $('net'),
   reset: $('reset'),
   file: $('file'),
@@ -81,6 +82,7 @@ function reloadSource() {
   const o = options();
   if (state.source.kind === 'sample') state.viewer.loadSample(state.source.index, o);
   else state.viewer.loadText(state.source.text, o);
+  state.viewer.setUp(ui.up.value);
   afterLoad(true);
 }
 
@@ -286,6 +288,7 @@ ui.sample.addEventListener('change', async () => {
       state.viewer.loadSample(index, options());
       state.source = { kind: 'sample', index };
     }
+    state.viewer.setUp(ui.up.value);
     showMessage('');
     afterLoad(true);
   });
@@ -311,6 +314,13 @@ optionSelector(ui.grid);
 ui.shading.addEventListener('change', () => {
   guarded(() => {
     state.viewer.setShading(ui.shading.value);
+    uploadAll(false);
+  });
+});
+ui.up.addEventListener('change', () => {
+  guarded(() => {
+    state.viewer.setUp(ui.up.value);
+    state.camera.up = ui.up.value;
     uploadAll(false);
   });
 });
@@ -362,6 +372,7 @@ async function loadFile(file) {
       if (e instanceof ModuleError) throw new ModuleError(`${file.name}: ${e.message}`);
       throw e;
     }
+    state.viewer.setUp(ui.up.value);
     state.source = { kind: 'text', text, name: file.name };
     state.file = state.source;
     listFile(file.name);
@@ -431,6 +442,9 @@ window.capdiv = {
   },
   bounds() {
     return state.viewer.bounds();
+  },
+  cameraUp() {
+    return state.camera.upVector();
   },
   exportObj(what) {
     return state.viewer.exportObj(what);

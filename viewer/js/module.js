@@ -77,6 +77,13 @@ export class Viewer {
     this.check(this.w.viewer_move_vertex(i, p[0], p[1], p[2]));
   }
 
+  // The axis shown upward: 'z' or 'y' (the light lines' plane lies above).
+  setUp(axis) {
+    const code = { z: 0, y: 1 }[axis];
+    if (code === undefined) throw new ModuleError(`up axis ${axis}: z or y`);
+    this.check(this.w.viewer_set_up(code));
+  }
+
   // Wavefront OBJ text of the control mesh as edited ('mesh') or of the
   // shown surface ('surface').
   exportObj(what) {

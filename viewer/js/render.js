@@ -33,7 +33,8 @@ function multiply(a, b) {
   return o;
 }
 
-// Orbit camera about a target, z up.
+// Orbit camera about a target, z or y up. With y up the orbit is z up's
+// turned with the model: z up's x, y, z are y up's x, −z, y.
 export class Camera {
   constructor() {
     this.yaw = -0.9;
@@ -41,6 +42,11 @@ export class Camera {
     this.distance = 4;
     this.target = [0, 0, 0];
     this.fovy = (40 * Math.PI) / 180;
+    this.up = 'z';
+  }
+
+  upVector() {
+    return this.up === 'y' ? [0, 1, 0] : [0, 0, 1];
   }
 
   frame(lo, hi) {
@@ -53,14 +59,15 @@ export class Camera {
   eye() {
     const cp = Math.cos(this.pitch);
     const d = this.distance;
-    return [this.target[0] + d * cp * Math.cos(this.yaw), this.target[1] + d * cp * Math.sin(this.yaw),
-      this.target[2] + d * Math.sin(this.pitch)];
+    const [a, b, h] = [d * cp * Math.cos(this.yaw), d * cp * Math.sin(this.yaw), d * Math.sin(this.pitch)];
+    const off = this.up === 'y' ? [a, h, -b] : [a, b, h];
+    return [0, 1, 2].map((k) => this.target[k] + off[k]);
   }
 
   // Unit vectors of the screen's right and up directions in the world.
   axes() {
     const z = unit(sub(this.eye(), this.target));
-    const x = unit(cross([0, 0, 1], z));
+    const x = unit(cross(this.upVector(), z));
     return { right: x, up: cross(z, x), back: z };
   }
 
@@ -68,7 +75,7 @@ export class Camera {
     const r = this.radius || 1;
     const near = Math.max(this.distance - 3 * r, this.distance * 0.01);
     const far = this.distance + 3 * r;
-    return multiply(perspective(this.fovy, aspect, near, far), lookAt(this.eye(), this.target, [0, 0, 1]));
+    return multiply(perspective(this.fovy, aspect, near, far), lookAt(this.eye(), this.target, this.upVector()));
   }
 
   // World length of one pixel at the depth of point p.
@@ -102,13 +109,13 @@ void main() {
 const SURFACE_FS = `#version 300 es
 precision highp float;
 in vec3 vPos; in vec3 vNrm; in vec4 vCol; in float vStripe;
-uniform int uMode; uniform vec3 uEye; uniform float uWidth;
+uniform int uMode; uniform vec3 uEye; uniform vec3 uUp; uniform float uWidth;
 out vec4 outColor;
 void main() {
   vec3 v = normalize(uEye - vPos);
   vec3 n = dot(vNrm, vNrm) > 0.0 ? normalize(vNrm) : v;
   if (dot(n, v) < 0.0) n = -n;
-  vec3 l = normalize(v + 0.6 * normalize(cross(v, vec3(0.0, 0.0, 1.0)) + vec3(0.0, 0.0, 0.8)));
+  vec3 l = normalize(v + 0.6 * normalize(cross(v, uUp) + 0.8 * uUp));
   float diffuse = max(dot(n, l), 0.0);
   float spec = pow(max(dot(reflect(-l, n), v), 0.0), 40.0);
   vec3 c = vCol.rgb;
@@ -257,6 +264,7 @@ export class Renderer {
       gl.uniform3fv(gl.getUniformLocation(this.surface, 'uEye'), camera.eye());
       gl.uniform1i(gl.getUniformLocation(this.surface, 'uMode'), mode);
       gl.uniform1f(gl.getUniformLocation(this.surface, 'uWidth'), STRIPE_WIDTH);
+      gl.uniform3fv(gl.getUniformLocation(this.surface, 'uUp'), camera.upVector());
       gl.bindVertexArray(this.surfaceVao);
       gl.enable(gl.POLYGON_OFFSET_FILL);
       gl.polygonOffset(1, 1);

@@ -361,6 +361,46 @@ test('the viewer in headless chromium', async (t) => {
       assert.deepEqual(errors, []);
     });
 
+    await t.test('the up toggle turns the camera and the picture', async () => {
+      await setNet(page, false);
+      assert.deepEqual(await page.evaluate(() => window.capdiv.cameraUp()), [0, 0, 1]);
+      const z = await pixels(page);
+      await page.selectOption('#up', 'y');
+      assert.deepEqual(await page.evaluate(() => window.capdiv.cameraUp()), [0, 1, 0]);
+      const y = await pixels(page);
+      const f = await changed(page, z, y);
+      assert.ok(f > 0.02, `${f} of the pixels changed`);
+      // Highlight lines: the light plane is above along the up axis too.
+      await page.selectOption('#shading', 'highlight');
+      const yh = await pixels(page);
+      await page.selectOption('#up', 'z');
+      const zh = await pixels(page);
+      assert.ok((await changed(page, yh, zh)) > 0.02);
+      await page.selectOption('#shading', 'plain');
+      assert.ok((await changed(page, z, await pixels(page))) < 0.001, 'z up again: the same image');
+      // The mushroom turned to y up, (x, y, z) -> (x, z, −y), shown y up:
+      // the picture of the mushroom z up, highlight lines included (the
+      // turn is exact; the pixels may differ by rasterisation only).
+      const obj = await page.evaluate(() => window.capdiv.exportObj('mesh'));
+      const turned = obj.split('\n').map((l) => {
+        if (!l.startsWith('v ')) return l;
+        const [x, y, w] = l.slice(2).split(' ').map(Number);
+        return `v ${x} ${w} ${-y}`;
+      }).join('\n');
+      await page.selectOption('#up', 'y');
+      await dropFile(page, 'turned.obj', turned);
+      await page.waitForFunction(() => document.getElementById('message').textContent === 'turned.obj loaded');
+      const turnedPlain = await pixels(page);
+      assert.ok((await changed(page, z, turnedPlain)) < 0.002, 'y-up mushroom, y up');
+      await page.selectOption('#shading', 'highlight');
+      assert.ok((await changed(page, zh, await pixels(page))) < 0.002, 'its highlight lines');
+      await page.selectOption('#shading', 'plain');
+      await page.selectOption('#up', 'z');
+      await page.selectOption('#sample', { label: 'mushroom' });
+      await page.waitForFunction(() => /^mushroom/.test(document.getElementById('status').textContent));
+      assert.deepEqual(errors, []);
+    });
+
     if (process.env.VIEWER_SCREENSHOT) {
       await page.setViewportSize({ width: 820, height: 560 });
       await page.selectOption('#sample', { label: 'mushroom' });
