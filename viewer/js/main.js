@@ -449,7 +449,12 @@ window.capdiv = {
   exportObj(what) {
     return state.viewer.exportObj(what);
   },
-
+  // Highlight stripes filtered over each pixel (true, the page's way) or
+  // sampled once per pixel (false: the anti-aliasing test's control).
+  setStripeFilter(on) {
+    state.renderer.filterStripes = on;
+    requestDraw();
+  },
   // Edits control points `count` times (a ±1 % nudge of the box size along
   // x and back, cycling through points spread over the mesh and the point
   // of the largest cap); returns the edit-to-surface times in ms (`times`)
