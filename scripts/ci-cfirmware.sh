@@ -9,8 +9,9 @@
 #      the header (the panic handler calls an undefined symbol); a negative
 #      control builds the staticlib with overflow checks and requires that link
 #      to fail;
-#   4. embedded-tests/tests/c_firmware_qemu.rs: both images under QEMU, every
-#      number against the f64 kernel;
+#   4. embedded-tests/tests/c_firmware_qemu.rs: both images under QEMU, and
+#      main.c as a host program (cc, the host staticlib, -Wl,--gc-sections),
+#      every number against the f64 kernel;
 #   5. the C firmware's sizes against cfirmware/size-budget.txt.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -26,6 +27,7 @@ missing=()
 command -v arm-none-eabi-gcc >/dev/null || missing+=(gcc-arm-none-eabi binutils-arm-none-eabi)
 command -v qemu-system-arm >/dev/null || missing+=(qemu-system-arm)
 command -v make >/dev/null || missing+=(make)
+command -v cc >/dev/null || missing+=(gcc)
 if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
@@ -71,7 +73,7 @@ grep -q "undefined reference to .capdiv_panic_path_linked" "$probe/ld.txt" || {
 }
 echo "probe link failed as it must: $(grep -c 'undefined reference to .capdiv_panic_path_linked' "$probe/ld.txt") panic call site(s)"
 
-step "C firmware under QEMU against the f64 kernel"
+step "C firmware under QEMU and as a host program against the f64 kernel"
 (cd embedded-tests && cargo test -q --release --features cfirmware --test c_firmware_qemu)
 
 step "sizes"

@@ -8,8 +8,11 @@
 #   3. viewer/test/viewer.test.mjs: the page served from loopback, driven in
 #      headless chromium (WebGL through SwiftShader): loads with no console
 #      error, shows the surface, every shading changes the image, broken files
-#      show a message, a control-point drag changes the surface, scheme and
-#      depth re-plan; prints the edit-to-surface times per sample.
+#      show a message, an empty surface is an error, a mesh far from the
+#      origin is framed as at the origin, a control-point drag changes the
+#      surface, the edited mesh and the surface save as OBJ, scheme and depth
+#      re-plan, the up toggle, highlight lines anti-aliased on a tall object;
+#      prints the edit-to-surface times per sample.
 # Prints its run time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

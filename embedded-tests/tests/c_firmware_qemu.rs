@@ -17,6 +17,12 @@
 //! - the printed inputs must be the Rust firmware's sample nets
 //!   (`firmware/src/sample.rs`), converted exactly.
 //!
+//! The same `main.c` is also built as a program for this machine (`make
+//! host`: `cfirmware/host.c` instead of the startup and semihosting code,
+//! the host's `cc` and the host build of the staticlib with the link line of
+//! `docs/embedded.md`) and checked the same way, as a board of the M4's
+//! depths without a stack measurement.
+//!
 //! Needs `arm-none-eabi-gcc` and `qemu-system-arm` (`scripts/ci-cfirmware.sh`
 //! installs them), hence the feature: `cargo test --release --features
 //! cfirmware --test c_firmware_qemu`.
@@ -62,6 +68,35 @@ fn build() {
         String::from_utf8_lossy(&out.stdout),
         String::from_utf8_lossy(&out.stderr)
     );
+}
+
+/// Builds the host program with `make host` and runs it.
+fn run_host() -> String {
+    let dir = repo_root().join("cfirmware");
+    let out = Command::new("make")
+        .args(["-s", "host"])
+        .current_dir(&dir)
+        .env_remove("CARGO_TARGET_DIR")
+        .env_remove("RUSTFLAGS")
+        .env_remove("CARGO_BUILD_TARGET")
+        .output()
+        .expect("make runs (needs make and a host C compiler, cc)");
+    assert!(
+        out.status.success(),
+        "make host in cfirmware/ failed:\n{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let run = run_with_limit(Command::new(dir.join("build/host/cfirmware")), LIMIT)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let text = String::from_utf8(run.stdout).expect("text output");
+    assert_eq!(
+        run.code,
+        Some(0),
+        "host program exit status; stderr {}",
+        run.stderr
+    );
+    text
 }
 
 /// Runs one image; its semihosting output goes to stdout through a chardev.
@@ -309,8 +344,11 @@ type PolarInputs = BTreeMap<(String, usize), (usize, [f64; 3], Vec<f64>)>;
 /// Inputs by (precision, id): a c-net (centre, nodes).
 type CnetInputs = BTreeMap<(String, usize), ([f64; 3], Vec<f64>)>;
 
+/// Checks a board's output: `m4`, `m0`, `m4-f32`, `m0-f32` or `host` (the
+/// M4's depths, no stack measurement).
 fn check(text: &str, board: &str) -> Summary {
     let f32_only = board.ends_with("-f32");
+    let m0 = board.starts_with("m0");
     let mut s = Summary::default();
     let mut polar = PolarInputs::new();
     let mut cnets = CnetInputs::new();
@@ -407,7 +445,7 @@ fn check(text: &str, board: &str) -> Summary {
             "lens" => {
                 // work 17·6·2^d, out 5 + 15·6·2^d, EG 4 + 36·5 and 225·5,
                 // then three lengths that overflow a 32-bit size_t: 0.
-                let d = if board.starts_with("m4") { 6 } else { 3 };
+                let d = if m0 { 3 } else { 6 };
                 let c = 6usize << d;
                 let want = [17 * c, 5 + 15 * c, 4 + 36 * 5, 225 * 5, 0, 0, 0];
                 let got: Vec<usize> = w[1..].iter().map(|x| int(x)).collect();
@@ -425,13 +463,12 @@ fn check(text: &str, board: &str) -> Summary {
     }
     assert!(done, "no `done` line: the firmware did not finish");
     assert!(
-        s.stack.0 > 0 && s.stack.0 < s.stack.1,
+        board == "host" || (s.stack.0 > 0 && s.stack.0 < s.stack.1),
         "stack high-water mark {:?} outside (0, size): overflow or no painting",
         s.stack
     );
     // What each board must have run (cfirmware/main.c).
-    let m4 = board.starts_with("m4");
-    let f32_depth = if m4 { 6 } else { 3 };
+    let f32_depth = if m0 { 3 } else { 6 };
     assert!(
         text.lines()
             .any(|l| l.starts_with(&format!("c2ps_refine f32 0 126 {f32_depth} 0 "))),
@@ -450,7 +487,7 @@ fn check(text: &str, board: &str) -> Summary {
         assert!(count("c2ps_refine", "f64") >= 2 && count("c2ps_jet", "f64") >= 2);
     }
     // The M0's 16 KiB do not hold the double EG subdivision's stack.
-    if !f32_only && m4 {
+    if !f32_only && !m0 {
         assert!(count("eg_refine", "f64") >= 2 && count("eg_ring", "f64") >= 2);
     }
     // 5 C²PS + 4 EG error statuses, 3 null buffers, 1 short output.
@@ -474,5 +511,19 @@ fn c_firmware_matches_f64_kernel() {
         for (kind, r) in &s.worst {
             eprintln!("  {kind:<12} f32 worst |diff| / tolerance = {r:.3}");
         }
+    }
+}
+
+#[test]
+fn host_c_program_matches_f64_kernel() {
+    let text = run_host();
+    let s = check(&text, "host");
+    let calls: usize = s.calls.values().sum();
+    eprintln!(
+        "host: {calls} calls match the f64 kernel (f64 bit for bit), {} errors as the kernel's",
+        s.errors
+    );
+    for (kind, r) in &s.worst {
+        eprintln!("  {kind:<12} f32 worst |diff| / tolerance = {r:.3}");
     }
 }

@@ -13,6 +13,7 @@ const ui = {
   depth: $('depth'),
   grid: $('grid'),
   shading: $('shading'),
+  up: $('up'),
   net: $('net'),
   reset: $('reset'),
   file: $('file'),
@@ -20,6 +21,8 @@ const ui = {
   status: $('status'),
   legend: $('legend'),
   edit: $('edit'),
+  saveMesh: $('save-mesh'),
+  saveSurface: $('save-surface'),
 };
 
 const state = {
@@ -27,6 +30,7 @@ const state = {
   renderer: null,
   camera: new Camera(),
   source: { kind: 'sample', index: 0 },
+  file: null,
   drag: null,
   pending: null,
   frame: 0,
@@ -78,7 +82,21 @@ function reloadSource() {
   const o = options();
   if (state.source.kind === 'sample') state.viewer.loadSample(state.source.index, o);
   else state.viewer.loadText(state.source.text, o);
+  state.viewer.setUp(ui.up.value);
   afterLoad(true);
+}
+
+// The mesh list names what is shown: after a file, an entry with its name
+// (choosing it again reloads the file).
+function listFile(name) {
+  let o = ui.sample.querySelector('option[value="file"]');
+  if (!o) {
+    o = document.createElement('option');
+    o.value = 'file';
+    ui.sample.append(o);
+  }
+  o.textContent = name;
+  ui.sample.value = 'file';
 }
 
 function uploadAll(frame) {
@@ -256,14 +274,25 @@ ui.canvas.addEventListener('wheel', (ev) => {
 
 // ---- selectors ----
 
-ui.sample.addEventListener('change', () => {
-  guarded(() => {
-    const index = Number(ui.sample.value);
-    state.viewer.loadSample(index, options());
-    state.source = { kind: 'sample', index };
+function listedSource() {
+  return state.source.kind === 'sample' ? String(state.source.index) : 'file';
+}
+
+ui.sample.addEventListener('change', async () => {
+  const ok = await guarded(() => {
+    if (ui.sample.value === 'file') {
+      state.viewer.loadText(state.file.text, options());
+      state.source = state.file;
+    } else {
+      const index = Number(ui.sample.value);
+      state.viewer.loadSample(index, options());
+      state.source = { kind: 'sample', index };
+    }
+    state.viewer.setUp(ui.up.value);
     showMessage('');
     afterLoad(true);
   });
+  if (!ok) ui.sample.value = listedSource();
 });
 
 function optionSelector(el) {
@@ -288,7 +317,39 @@ ui.shading.addEventListener('change', () => {
     uploadAll(false);
   });
 });
+ui.up.addEventListener('change', () => {
+  guarded(() => {
+    state.viewer.setUp(ui.up.value);
+    state.camera.up = ui.up.value;
+    uploadAll(false);
+  });
+});
 ui.net.addEventListener('change', requestDraw);
+
+// ---- export: Wavefront OBJ downloads ----
+
+function sourceStem() {
+  const name = state.source.kind === 'text' ? state.source.name : state.viewer.summary().name;
+  return name.replace(/\.[^.]*$/, '') || 'mesh';
+}
+
+function download(name, text) {
+  const url = URL.createObjectURL(new Blob([text], { type: 'model/obj' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+ui.saveMesh.addEventListener('click', () => guarded(() => {
+  download(`${sourceStem()}-mesh.obj`, state.viewer.exportObj('mesh'));
+}));
+ui.saveSurface.addEventListener('click', () => guarded(() => {
+  download(`${sourceStem()}-surface.obj`, state.viewer.exportObj('surface'));
+}));
 ui.reset.addEventListener('click', () => guarded(() => {
   state.viewer.reset();
   uploadAll(false);
@@ -311,7 +372,10 @@ async function loadFile(file) {
       if (e instanceof ModuleError) throw new ModuleError(`${file.name}: ${e.message}`);
       throw e;
     }
+    state.viewer.setUp(ui.up.value);
     state.source = { kind: 'text', text, name: file.name };
+    state.file = state.source;
+    listFile(file.name);
     showMessage(`${file.name} loaded`, 'info');
     afterLoad(true);
   });
@@ -368,6 +432,28 @@ window.capdiv = {
   },
   summary() {
     return state.viewer.summary();
+  },
+  // The control net's edges as 'a-b' (a < b).
+  netEdges() {
+    const e = state.viewer.control().edges;
+    const out = [];
+    for (let k = 0; k < e.length; k += 2) out.push(`${Math.min(e[k], e[k + 1])}-${Math.max(e[k], e[k + 1])}`);
+    return out;
+  },
+  bounds() {
+    return state.viewer.bounds();
+  },
+  cameraUp() {
+    return state.camera.upVector();
+  },
+  exportObj(what) {
+    return state.viewer.exportObj(what);
+  },
+  // Highlight stripes filtered over each pixel (true, the page's way) or
+  // sampled once per pixel (false: the anti-aliasing test's control).
+  setStripeFilter(on) {
+    state.renderer.filterStripes = on;
+    requestDraw();
   },
   // Edits control points `count` times (a ±1 % nudge of the box size along
   // x and back, cycling through points spread over the mesh and the point

@@ -77,6 +77,22 @@ export class Viewer {
     this.check(this.w.viewer_move_vertex(i, p[0], p[1], p[2]));
   }
 
+  // The axis shown upward: 'z' or 'y' (the light lines' plane lies above).
+  setUp(axis) {
+    const code = { z: 0, y: 1 }[axis];
+    if (code === undefined) throw new ModuleError(`up axis ${axis}: z or y`);
+    this.check(this.w.viewer_set_up(code));
+  }
+
+  // Wavefront OBJ text of the control mesh as edited ('mesh') or of the
+  // shown surface ('surface').
+  exportObj(what) {
+    const code = { mesh: 0, surface: 1 }[what];
+    if (code === undefined) throw new ModuleError(`export ${what}: mesh or surface`);
+    this.check(this.w.viewer_export_obj(code));
+    return this.text();
+  }
+
   rescale() {
     this.check(this.w.viewer_rescale());
   }

@@ -33,7 +33,8 @@ function multiply(a, b) {
   return o;
 }
 
-// Orbit camera about a target, z up.
+// Orbit camera about a target, z or y up. With y up the orbit is z up's
+// turned with the model: z up's x, y, z are y up's x, −z, y.
 export class Camera {
   constructor() {
     this.yaw = -0.9;
@@ -41,6 +42,11 @@ export class Camera {
     this.distance = 4;
     this.target = [0, 0, 0];
     this.fovy = (40 * Math.PI) / 180;
+    this.up = 'z';
+  }
+
+  upVector() {
+    return this.up === 'y' ? [0, 1, 0] : [0, 0, 1];
   }
 
   frame(lo, hi) {
@@ -53,14 +59,15 @@ export class Camera {
   eye() {
     const cp = Math.cos(this.pitch);
     const d = this.distance;
-    return [this.target[0] + d * cp * Math.cos(this.yaw), this.target[1] + d * cp * Math.sin(this.yaw),
-      this.target[2] + d * Math.sin(this.pitch)];
+    const [a, b, h] = [d * cp * Math.cos(this.yaw), d * cp * Math.sin(this.yaw), d * Math.sin(this.pitch)];
+    const off = this.up === 'y' ? [a, h, -b] : [a, b, h];
+    return [0, 1, 2].map((k) => this.target[k] + off[k]);
   }
 
   // Unit vectors of the screen's right and up directions in the world.
   axes() {
     const z = unit(sub(this.eye(), this.target));
-    const x = unit(cross([0, 0, 1], z));
+    const x = unit(cross(this.upVector(), z));
     return { right: x, up: cross(z, x), back: z };
   }
 
@@ -68,7 +75,7 @@ export class Camera {
     const r = this.radius || 1;
     const near = Math.max(this.distance - 3 * r, this.distance * 0.01);
     const far = this.distance + 3 * r;
-    return multiply(perspective(this.fovy, aspect, near, far), lookAt(this.eye(), this.target, [0, 0, 1]));
+    return multiply(perspective(this.fovy, aspect, near, far), lookAt(this.eye(), this.target, this.upVector()));
   }
 
   // World length of one pixel at the depth of point p.
@@ -98,17 +105,47 @@ void main() {
 
 // uMode: 0 plain, 1 highlight lines, 2 and 3 curvature maps.
 // Highlight stripes: intensity 1 − d/w within w of an integer parameter
-// (capdiv_mesh::shade::HighlightLines::intensity), per pixel.
+// (capdiv_mesh::shade::HighlightLines::intensity), averaged over the pixel:
+// with the parameter linear across the pixel square (its screen-space
+// derivatives a, b: dFdx, dFdy), its values there are spread as the
+// convolution of two boxes of widths |a| and |b|, and the stripe function's
+// mean under that spread follows exactly from its second integral. Where
+// lines are wider than a pixel this is the stripe itself, softened by a pixel
+// at its edges; where many lines fall into one pixel (normals nearly
+// parallel to the light plane, as on the sides of tall objects) it is their
+// mean, w — never moiré. uFilter = 0 samples the stripe function once per
+// pixel instead (the anti-aliasing test's control).
 const SURFACE_FS = `#version 300 es
 precision highp float;
 in vec3 vPos; in vec3 vNrm; in vec4 vCol; in float vStripe;
-uniform int uMode; uniform vec3 uEye; uniform float uWidth;
+uniform int uMode; uniform vec3 uEye; uniform vec3 uUp; uniform float uWidth; uniform int uFilter;
 out vec4 outColor;
+// G(x) = ∫₀ˣ F, F(y) = ∫₀ʸ stripe, for the stripe function of width w and
+// period 1 (the tent's right half on [0, w), its left half on (1 − w, 1)):
+// F rises by w per period, G(k) = w·k²/2; h is ∫ₖˣ (F − F(k)) within a period.
+float stripeIntegral2(float x, float w) {
+  float k = floor(x);
+  float t = x - k;
+  float h = t < w ? t * t / 2.0 - t * t * t / (6.0 * w) : w * w / 3.0 + (t - w) * w / 2.0;
+  float b = max(t - (1.0 - w), 0.0);
+  h += b * b * b / (6.0 * w);
+  return w * k * k / 2.0 + k * w * t + h;
+}
+// The stripe function's mean over a pixel where the parameter is s at the
+// centre with derivatives g. Derivatives under 0.01 (lines 100 pixels or
+// more apart) are taken as 0.01, so that the float32 differences stay
+// accurate (to about 1e-3).
+float stripePixel(float s, vec2 g, float w) {
+  float a = max(abs(g.x), 0.01);
+  float b = max(abs(g.y), 0.01);
+  return (stripeIntegral2(s + 0.5 * (a + b), w) - stripeIntegral2(s + 0.5 * (a - b), w)
+    - stripeIntegral2(s - 0.5 * (a - b), w) + stripeIntegral2(s - 0.5 * (a + b), w)) / (a * b);
+}
 void main() {
   vec3 v = normalize(uEye - vPos);
   vec3 n = dot(vNrm, vNrm) > 0.0 ? normalize(vNrm) : v;
   if (dot(n, v) < 0.0) n = -n;
-  vec3 l = normalize(v + 0.6 * normalize(cross(v, vec3(0.0, 0.0, 1.0)) + vec3(0.0, 0.0, 0.8)));
+  vec3 l = normalize(v + 0.6 * normalize(cross(v, uUp) + 0.8 * uUp));
   float diffuse = max(dot(n, l), 0.0);
   float spec = pow(max(dot(reflect(-l, n), v), 0.0), 40.0);
   vec3 c = vCol.rgb;
@@ -119,11 +156,15 @@ void main() {
     col = c * (0.22 + 0.78 * diffuse) + 0.2 * spec;
   }
   if (uMode == 1) {
-    float d = abs(vStripe - round(vStripe));
-    float intensity = d >= uWidth ? 0.0 : 1.0 - d / uWidth;
-    // Where lines crowd closer than a pixel (normals nearly parallel to the
-    // light plane), show their mean intensity (uWidth) instead of moiré.
-    intensity = mix(intensity, uWidth, smoothstep(0.25, 0.75, fwidth(vStripe)));
+    // From the line below, so that the integrals keep their precision.
+    float s = vStripe - floor(vStripe);
+    float intensity;
+    if (uFilter != 0) {
+      intensity = stripePixel(s, vec2(dFdx(vStripe), dFdy(vStripe)), uWidth);
+    } else {
+      float d = min(s, 1.0 - s);
+      intensity = d >= uWidth ? 0.0 : 1.0 - d / uWidth;
+    }
     col = mix(col, vec3(0.05, 0.05, 0.12), intensity);
   }
   outColor = vec4(col, 1.0);
@@ -172,6 +213,8 @@ export class Renderer {
     this.netEdges = 0;
     this.netPoints = 0;
     this.selected = -1;
+    // Highlight stripes filtered over the pixel (see SURFACE_FS).
+    this.filterStripes = true;
 
     this.surfaceVao = gl.createVertexArray();
     gl.bindVertexArray(this.surfaceVao);
@@ -257,6 +300,8 @@ export class Renderer {
       gl.uniform3fv(gl.getUniformLocation(this.surface, 'uEye'), camera.eye());
       gl.uniform1i(gl.getUniformLocation(this.surface, 'uMode'), mode);
       gl.uniform1f(gl.getUniformLocation(this.surface, 'uWidth'), STRIPE_WIDTH);
+      gl.uniform3fv(gl.getUniformLocation(this.surface, 'uUp'), camera.upVector());
+      gl.uniform1i(gl.getUniformLocation(this.surface, 'uFilter'), this.filterStripes ? 1 : 0);
       gl.bindVertexArray(this.surfaceVao);
       gl.enable(gl.POLYGON_OFFSET_FILL);
       gl.polygonOffset(1, 1);

@@ -11,7 +11,7 @@
 use crate::input;
 use crate::paint::Mode;
 use crate::samples::SAMPLES;
-use crate::scene::{Options, Scene};
+use crate::scene::{Options, Scene, Up};
 use std::cell::RefCell;
 
 #[derive(Default)]
@@ -182,6 +182,44 @@ pub extern "C" fn viewer_rescale() -> i32 {
     on_scene(|sc| {
         sc.rescale();
         Ok(())
+    })
+}
+
+/// The axis shown upward: 0 `z`, 1 `y` (the highlight lines' light plane
+/// lies above the surface along it).
+#[no_mangle]
+pub extern "C" fn viewer_set_up(axis: u32) -> i32 {
+    on_scene(|sc| {
+        let up = match axis {
+            0 => Up::Z,
+            1 => Up::Y,
+            _ => return Err(format!("up axis {axis}: 0 (z) or 1 (y)")),
+        };
+        sc.set_up(up);
+        Ok(())
+    })
+}
+
+/// Puts Wavefront OBJ text into the text buffer: `what` 0 the control mesh
+/// with its edited positions ([`Scene::control_obj`]), 1 the surface
+/// ([`Scene::surface_obj`]). Returns its length, or `-1` (message in the
+/// buffer).
+#[no_mangle]
+pub extern "C" fn viewer_export_obj(what: u32) -> i32 {
+    with(|st| {
+        let text = match (what, st.scene.as_ref()) {
+            (_, None) => Err("no mesh loaded".to_string()),
+            (0, Some(sc)) => Ok(sc.control_obj()),
+            (1, Some(sc)) => Ok(sc.surface_obj()),
+            _ => Err(format!("export {what}: 0 (control mesh) or 1 (surface)")),
+        };
+        match text {
+            Ok(t) => set_text(st, &t),
+            Err(e) => {
+                set_text(st, &e);
+                -1
+            }
+        }
     })
 }
 

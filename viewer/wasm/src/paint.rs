@@ -14,6 +14,7 @@
 //!   scale `m` = [`symmetric_scale`]`(values, `[`QUANTILE`]`)`; hole-fan
 //!   vertices get [`HOLE_COLOUR`], degenerate ones [`DEGENERATE_COLOUR`].
 
+use crate::scene::Up;
 use crate::tess::{Surface, DEGENERATE, HOLE};
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
 
@@ -88,10 +89,25 @@ pub fn scale(surface: &Surface, mode: Mode) -> f64 {
     symmetric_scale(&kept, QUANTILE)
 }
 
-/// The light lines for a surface of bounding box `[lo, hi]`
-/// ([`HighlightLines::for_box`] with [`LINES_ACROSS`] lines).
-pub fn lines(lo: [f64; 3], hi: [f64; 3]) -> Option<HighlightLines> {
-    HighlightLines::for_box(lo, hi, LINES_ACROSS)
+/// The light lines for a surface of bounding box `[lo, hi]` with `up` the
+/// axis shown upward: [`HighlightLines::for_box`] with [`LINES_ACROSS`]
+/// lines for `z` up; for `y` up the same lines turned with the model
+/// (`z` up's `x, y, z` are `y` up's `x, −z, y`): the light plane a box
+/// diagonal above the top face (`+y`), lines along `−z`.
+pub fn lines(lo: [f64; 3], hi: [f64; 3], up: Up) -> Option<HighlightLines> {
+    match up {
+        Up::Z => HighlightLines::for_box(lo, hi, LINES_ACROSS),
+        Up::Y => {
+            let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+            let centre = [0.5 * (lo[0] + hi[0]), hi[1] + size, 0.5 * (lo[2] + hi[2])];
+            HighlightLines::new(
+                centre,
+                [0.0, 0.0, -1.0],
+                [1.0, 0.0, 0.0],
+                size / LINES_ACROSS,
+            )
+        }
+    }
 }
 
 /// Fills `out` for `surface` under `mode` (curvature scale `m`, light lines
@@ -191,7 +207,7 @@ mod tests {
     #[test]
     fn highlight_parameter_is_the_shared_one() {
         let s = surface(&[(0.0, 0.0, 0), (0.0, 0.0, 0), (0.0, 0.0, DEGENERATE)]);
-        let l = lines(s.lo, s.hi).unwrap();
+        let l = lines(s.lo, s.hi, Up::Z).unwrap();
         let mut p = Paint::default();
         paint(&s, Mode::Highlight, 1.0, Some(&l), &mut p);
         for i in 0..2 {

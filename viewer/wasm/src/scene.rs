@@ -1,13 +1,20 @@
-//! One mesh on the page: its topology analysed once ([`SurfacePlan`]), an
-//! [`Evaluator`] sized for it, and the current positions. An edit of a
-//! control point re-runs only the evaluate-only path — `Evaluator::evaluate`
+//! One mesh on the page: its topology and subdivision tags analysed once
+//! ([`SurfacePlan::for_mesh`]), an [`Evaluator`] sized for it, and the
+//! current positions. An edit of a control point re-runs only the evaluate-only path — `Evaluator::evaluate`
 //! on the same plan, then the per-vertex tessellation and paint — never the
 //! analysis. Options (depth, scheme, grid) make a new plan.
 
 use crate::paint::{self, Mode, Paint};
 use crate::tess::{Surface, Tessellator};
+use capdiv::Point3;
 use capdiv_mesh::shade::HighlightLines;
-use capdiv_mesh::{Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
+use capdiv_mesh::tessellate::weld::representatives;
+use capdiv_mesh::tessellate::{write_obj, write_point};
+use capdiv_mesh::tessellate::{Face, Tessellation};
+use capdiv_mesh::{
+    BoundaryInterpolation, CreaseMethod, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology,
+    TriangleSubdivision,
+};
 use std::fmt::Write;
 
 /// Deepest cap depth the page offers.
@@ -58,6 +65,21 @@ pub fn plan_options(o: &Options) -> Result<PlanOptions<'static>, String> {
     })
 }
 
+/// The message for a mesh whose surface has no patch.
+pub const EMPTY_SURFACE: &str =
+    "no patch to draw: the surface is empty (every face a hole, or dropped by the boundary rule)";
+
+/// The axis the page shows upward: `z` (the CLI's, CAD's) or `y` (glTF's,
+/// Blender's export default).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Up {
+    /// `+z` up.
+    #[default]
+    Z,
+    /// `+y` up.
+    Y,
+}
+
 /// What [`auto_grid`] keeps its estimate of the surface's vertices under.
 pub const VERTEX_BUDGET: usize = 40_000;
 
@@ -84,8 +106,10 @@ struct Analysis {
 }
 
 impl Analysis {
-    fn new(topo: &Topology, o: &Options) -> Result<Self, String> {
-        let plan = SurfacePlan::new(topo, plan_options(o)?).map_err(|e| e.to_string())?;
+    /// The plan of `mesh` with its subdivision tags (creases, corners,
+    /// holes, boundary rule: [`SurfacePlan::for_mesh`]).
+    fn new(mesh: &MeshInput, o: &Options) -> Result<Self, String> {
+        let plan = SurfacePlan::for_mesh(mesh, plan_options(o)?).map_err(|e| e.to_string())?;
         let evaluator = Evaluator::new(&plan).map_err(|e| e.to_string())?;
         let grid = if o.grid == 0 {
             auto_grid(&plan)
@@ -104,7 +128,6 @@ impl Analysis {
 pub struct Scene {
     name: String,
     mesh: MeshInput,
-    topo: Topology,
     analysis: Analysis,
     options: Options,
     positions: Vec<[f64; 3]>,
@@ -114,6 +137,7 @@ pub struct Scene {
     /// Its GPU attributes under the current shading.
     pub paint: Paint,
     mode: Mode,
+    up: Up,
     scale: f64,
     lines: Option<HighlightLines>,
     /// Edges of the control mesh (pairs of vertex indices, each once).
@@ -123,8 +147,9 @@ pub struct Scene {
 impl Scene {
     /// Validates, analyses and evaluates `mesh`. `Err`: the page's message.
     pub fn new(name: &str, mesh: MeshInput, options: Options, mode: Mode) -> Result<Self, String> {
-        let topo = Topology::new(&mesh).map_err(|e| e.to_string())?;
-        let analysis = Analysis::new(&topo, &options)?;
+        // The viewer takes manifold, consistently oriented meshes only.
+        Topology::new(&mesh).map_err(|e| e.to_string())?;
+        let analysis = Analysis::new(&mesh, &options)?;
         let positions = mesh.vertices.clone();
         let mut edges: Vec<(u32, u32)> = mesh
             .faces
@@ -141,7 +166,6 @@ impl Scene {
         let mut scene = Scene {
             name: name.into(),
             mesh,
-            topo,
             analysis,
             options,
             positions,
@@ -149,13 +173,23 @@ impl Scene {
             new_plan: true,
             paint: Paint::default(),
             mode,
+            up: Up::Z,
             scale: 1.0,
             lines: None,
             edges: edges.into_iter().flat_map(|(a, b)| [a, b]).collect(),
         };
         scene.evaluate()?;
+        scene.require_surface()?;
         scene.rescale();
         Ok(scene)
+    }
+
+    /// `Err` when the evaluation gave no triangle to show.
+    fn require_surface(&self) -> Result<(), String> {
+        if self.tess.surface.indices.is_empty() {
+            return Err(EMPTY_SURFACE.into());
+        }
+        Ok(())
     }
 
     /// Evaluates the current positions through the plan and samples the
@@ -208,11 +242,11 @@ impl Scene {
 
     /// New options: a new plan. On error the scene is unchanged.
     pub fn set_options(&mut self, options: Options) -> Result<(), String> {
-        let analysis = Analysis::new(&self.topo, &options)?;
+        let analysis = Analysis::new(&self.mesh, &options)?;
         let old = std::mem::replace(&mut self.analysis, analysis);
         let old_options = std::mem::replace(&mut self.options, options);
         self.new_plan = true;
-        if let Err(e) = self.evaluate() {
+        if let Err(e) = self.evaluate().and_then(|()| self.require_surface()) {
             self.analysis = old;
             self.options = old_options;
             self.new_plan = true;
@@ -255,9 +289,121 @@ impl Scene {
     pub fn rescale(&mut self) {
         let s = &self.tess.surface;
         self.scale = paint::scale(s, self.mode);
-        self.lines = paint::lines(s.lo, s.hi);
+        self.lines = paint::lines(s.lo, s.hi, self.up);
         self.tess.dirty = (0, s.len());
         self.repaint();
+    }
+
+    /// The axis shown upward: the light plane of the highlight lines lies
+    /// above the surface along it. Repaints.
+    pub fn set_up(&mut self, up: Up) {
+        self.up = up;
+        self.rescale();
+    }
+
+    /// The control mesh with its current (edited) positions as Wavefront
+    /// OBJ: `v x y z` per control point, `f` per face (1-based), numbers
+    /// that read back exactly, and the subdivision tags the mesh has as
+    /// OpenSubdiv's `t` lines (`capdiv_mesh::obj` reads them; other
+    /// readers skip them): creases, corners, holes, and the boundary,
+    /// crease and triangle rules where they are not the defaults.
+    pub fn control_obj(&self) -> String {
+        let mut text = format!("# capdiv viewer: control mesh of {}\n", self.name);
+        for &p in &self.positions {
+            write_point(&mut text, "v", p);
+        }
+        for f in &self.mesh.faces {
+            text.push('f');
+            for &i in f {
+                let _ = write!(text, " {}", i as u64 + 1);
+            }
+            text.push('\n');
+        }
+        let tags = &self.mesh.tags;
+        for c in &tags.creases {
+            let [a, b] = c.vertices;
+            let _ = writeln!(text, "t crease 2/1/0 {a} {b} {}", c.sharpness);
+        }
+        for c in &tags.corners {
+            let _ = writeln!(text, "t corner 1/1/0 {} {}", c.vertex, c.sharpness);
+        }
+        if !tags.holes.is_empty() {
+            let _ = write!(text, "t hole {}/0/0", tags.holes.len());
+            for h in &tags.holes {
+                let _ = write!(text, " {h}");
+            }
+            text.push('\n');
+        }
+        if tags.boundary != BoundaryInterpolation::default() {
+            let n = match tags.boundary {
+                BoundaryInterpolation::None => 0,
+                BoundaryInterpolation::EdgeAndCorner => 1,
+                BoundaryInterpolation::EdgeOnly => 2,
+            };
+            let _ = writeln!(text, "t interpolateboundary 1/0/0 {n}");
+        }
+        if tags.crease_method != CreaseMethod::default() {
+            let _ = writeln!(text, "t creasemethod 0/0/1 {}", tags.crease_method.id());
+        }
+        if tags.triangles != TriangleSubdivision::default() {
+            let _ = writeln!(text, "t smoothtriangles 0/0/1 {}", tags.triangles.id());
+        }
+        text
+    }
+
+    /// The shown surface as Wavefront OBJ (`capdiv_mesh::tessellate::write_obj`):
+    /// its samples welded by position (tolerance 1e-9 of the box size; the
+    /// patches' shared edges are sampled at the same parameters), one
+    /// normal per vertex (the first welded sample's that exists), the
+    /// triangles with their corners not welded together.
+    pub fn surface_obj(&self) -> String {
+        let s = &self.tess.surface;
+        let size = (0..3).map(|c| s.hi[c] - s.lo[c]).fold(0.0, f64::max);
+        let points: Vec<Point3<f64>> = s.position.iter().map(|&p| Point3(p)).collect();
+        let rep = representatives(&points, 1e-9 * size);
+        let mut index = vec![u32::MAX; s.len()];
+        let mut t = Tessellation {
+            positions: Vec::new(),
+            normals: Vec::new(),
+            faces: Vec::new(),
+            tags: Vec::new(),
+            samples: s.len(),
+            degenerate_dropped: 0,
+        };
+        for (i, &r) in rep.iter().enumerate() {
+            let r = r as usize;
+            if index[r] == u32::MAX {
+                index[r] = t.positions.len() as u32;
+                t.positions.push(points[r]);
+                t.normals.push(Point3([0.0; 3]));
+            }
+            let n = &mut t.normals[index[r] as usize];
+            if n.0 == [0.0; 3] && s.flags[i] & crate::tess::DEGENERATE == 0 {
+                *n = Point3(s.normal[i]);
+            }
+        }
+        for tri in s.indices.chunks(3) {
+            let c = [0, 1, 2].map(|k| index[rep[tri[k] as usize] as usize]);
+            if c[0] == c[1] || c[1] == c[2] || c[2] == c[0] {
+                t.degenerate_dropped += 1;
+            } else {
+                t.faces.push(Face::Tri(c));
+                t.tags.push(0);
+            }
+        }
+        write_obj(
+            &t,
+            &[format!(
+                "capdiv viewer: surface of {}, depth {}, {}",
+                self.name,
+                self.options.depth,
+                if self.options.catmull_clark {
+                    "Catmull-Clark caps"
+                } else {
+                    "C2PS and EG caps"
+                }
+            )],
+        )
     }
 
     /// Current control-point positions.
@@ -327,7 +473,8 @@ impl Scene {
         }
         let _ = write!(
             s,
-            "],\"grid\":{},\"surface_vertices\":{},\"triangles\":{},\"scale\":{}}}",
+            "],\"depth\":{},\"grid\":{},\"surface_vertices\":{},\"triangles\":{},\"scale\":{}}}",
+            self.options.depth,
             self.analysis.grid,
             self.tess.surface.len(),
             self.tess.surface.indices.len() / 3,
@@ -563,6 +710,187 @@ mod tests {
                 .flatten()
                 .all(|c| c.is_finite()));
         }
+    }
+
+    #[test]
+    fn the_default_depth_is_4() {
+        assert_eq!(Options::default().depth, 4);
+        let s = crate::samples::by_name("torus").unwrap();
+        let sc = Scene::new("torus", (s.build)(), Options::default(), Mode::Plain).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&sc.summary()).unwrap();
+        assert_eq!(v["depth"], 4);
+    }
+
+    #[test]
+    fn a_mesh_far_from_the_origin_has_the_box_of_its_samples() {
+        // The mushroom (C²PS caps at depth 4: hole fans) moved by 1000.
+        let s = crate::samples::by_name("mushroom").unwrap();
+        let mut mesh = (s.build)();
+        for v in &mut mesh.vertices {
+            for c in v.iter_mut() {
+                *c += 1000.0;
+            }
+        }
+        let lo_net = (0..3).map(|c| {
+            mesh.vertices
+                .iter()
+                .map(|v| v[c])
+                .fold(f64::INFINITY, f64::min)
+        });
+        assert!(lo_net.clone().all(|x| x > 990.0));
+        let sc = Scene::new("far", mesh, Options::default(), Mode::Plain).unwrap();
+        let surface = sc.surface();
+        assert!(surface.flags.iter().any(|&f| f & HOLE != 0));
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in &surface.position {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        assert_eq!((surface.lo, surface.hi), (lo, hi));
+        assert!(lo.iter().all(|&x| x > 990.0), "{lo:?}");
+    }
+
+    #[test]
+    fn an_empty_surface_is_an_error() {
+        // A quad whose face is a hole.
+        let quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\nt hole 1/0/0 0\n";
+        let quad = crate::input::parse(quad).unwrap();
+        let e = Scene::new("quad", quad, Options::default(), Mode::Plain)
+            .err()
+            .expect("an empty surface is an error");
+        assert_eq!(e, EMPTY_SURFACE);
+        // Every face of a torus a hole.
+        let mut torus = capdiv_mesh::samples::torus(6, 5);
+        torus.tags.holes = (0..torus.faces.len() as u32).collect();
+        let e = Scene::new("holes", torus, Options::default(), Mode::Plain)
+            .err()
+            .expect("an empty surface is an error");
+        assert_eq!(e, EMPTY_SURFACE);
+    }
+
+    #[test]
+    fn the_control_obj_reads_back_as_the_edited_mesh() {
+        use capdiv_mesh::{EdgeCrease, VertexCorner};
+        let mut mesh = capdiv_mesh::samples::torus(6, 5);
+        let f0 = mesh.faces[0].clone();
+        mesh.tags.creases.push(EdgeCrease {
+            vertices: [f0[0], f0[1]],
+            sharpness: 2.5,
+        });
+        mesh.tags.corners.push(VertexCorner {
+            vertex: f0[2],
+            sharpness: 0.3,
+        });
+        mesh.tags.holes = vec![7, 12];
+        mesh.tags.boundary = BoundaryInterpolation::EdgeOnly;
+        mesh.tags.crease_method = CreaseMethod::Chaikin;
+        let mut sc = Scene::new("torus", mesh.clone(), Options::default(), Mode::Plain).unwrap();
+        let p = sc.positions()[3];
+        let moved = [p[0] + 0.1, p[1] - 1.0 / 3.0, p[2] + 1e-7];
+        sc.move_vertex(3, moved).unwrap();
+        let back = crate::input::parse(&sc.control_obj()).unwrap();
+        mesh.vertices[3] = moved;
+        assert_eq!(back.vertices, mesh.vertices);
+        assert_eq!(back.faces, mesh.faces);
+        assert_eq!(back.tags, mesh.tags);
+    }
+
+    /// `v`, `vn` and `f a//a b//b c//c` lines of an OBJ text (0-based faces).
+    type ObjParts = (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<[u32; 3]>);
+
+    fn obj_parts(text: &str) -> ObjParts {
+        let (mut v, mut vn, mut f) = (Vec::new(), Vec::new(), Vec::new());
+        for line in text.lines() {
+            let w: Vec<&str> = line.split_whitespace().collect();
+            let xyz = || [1, 2, 3].map(|k| w[k].parse::<f64>().unwrap());
+            match w.first() {
+                Some(&"v") => v.push(xyz()),
+                Some(&"vn") => vn.push(xyz()),
+                Some(&"f") => {
+                    assert_eq!(w.len(), 4, "{line}");
+                    f.push([1, 2, 3].map(|k| {
+                        let (a, b) = w[k].split_once("//").unwrap();
+                        assert_eq!(a, b);
+                        a.parse::<u32>().unwrap() - 1
+                    }));
+                }
+                _ => {}
+            }
+        }
+        (v, vn, f)
+    }
+
+    #[test]
+    fn the_surface_obj_is_the_shown_surface_welded() {
+        use capdiv_mesh::tessellate::{is_closed_and_oriented, Face};
+        let mut sc = scene("globe", 3);
+        let p = sc.positions()[0];
+        sc.move_vertex(0, [p[0] * 1.2, p[1], p[2]]).unwrap();
+        let (v, vn, f) = obj_parts(&sc.surface_obj());
+        let s = sc.surface();
+        assert_eq!(v.len(), vn.len());
+        // Welding: fewer vertices than samples, each one a sample's position
+        // exactly, every triangle kept (the globe's have three distinct
+        // corners), and the triangles close the globe consistently oriented.
+        assert!(v.len() < s.len(), "{} of {}", v.len(), s.len());
+        assert!(v.iter().all(|q| s.position.contains(q)));
+        assert_eq!(f.len(), s.indices.len() / 3);
+        // Each corner within the weld tolerance (1e-9 of the box) of its
+        // sample.
+        let size = (0..3).map(|c| s.hi[c] - s.lo[c]).fold(0.0, f64::max);
+        for (t, tri) in f.iter().zip(s.indices.chunks(3)) {
+            for k in 0..3 {
+                let (a, b) = (v[t[k] as usize], s.position[tri[k] as usize]);
+                assert!(
+                    (0..3).all(|c| (a[c] - b[c]).abs() <= 1e-9 * size),
+                    "{a:?} {b:?}"
+                );
+            }
+        }
+        let faces: Vec<Face> = f.iter().map(|&t| Face::Tri(t)).collect();
+        assert_eq!(is_closed_and_oriented(&faces), Ok(()));
+        // Unit normals (the globe has no degenerate sample).
+        for n in &vn {
+            let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            assert!((len - 1.0).abs() < 1e-12, "{n:?}");
+        }
+    }
+
+    #[test]
+    fn y_up_turns_the_light_lines_with_the_model() {
+        // The globe z-up, and turned to y-up (x, y, z) -> (x, z, -y), an
+        // exact map: the same highlight parameters at the same samples (to
+        // rounding of the parameter's arithmetic in another coordinate
+        // order), and y-up on the unturned globe gives other ones.
+        let s = crate::samples::by_name("globe").unwrap();
+        let mesh = (s.build)();
+        let mut turned = mesh.clone();
+        for v in &mut turned.vertices {
+            *v = [v[0], v[2], -v[1]];
+        }
+        let o = Options {
+            depth: 3,
+            ..Options::default()
+        };
+        let a = Scene::new("z", mesh.clone(), o, Mode::Highlight).unwrap();
+        let mut b = Scene::new("y", turned, o, Mode::Highlight).unwrap();
+        b.set_up(Up::Y);
+        let (sa, sb) = (&a.paint.stripes, &b.paint.stripes);
+        assert_eq!(sa.len(), sb.len());
+        for (x, y) in sa.iter().zip(sb) {
+            assert!((x - y).abs() <= 1e-5 * x.abs().max(1.0), "{x} {y}");
+        }
+        let mut c = Scene::new("z as y", mesh, o, Mode::Highlight).unwrap();
+        c.set_up(Up::Y);
+        let differ = sa
+            .iter()
+            .zip(&c.paint.stripes)
+            .filter(|(x, y)| (*x - *y).abs() > 0.1)
+            .count();
+        assert!(differ > sa.len() / 4, "{differ} of {}", sa.len());
     }
 
     #[test]

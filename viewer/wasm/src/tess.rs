@@ -97,6 +97,18 @@ impl Surface {
         self.flags[i] = flags;
     }
 
+    /// Appends a copy of vertex `src` flagged [`HOLE`]. The box already
+    /// holds its position.
+    fn push_copy(&mut self, src: usize) -> u32 {
+        let i = self.position.len() as u32;
+        self.position.push(self.position[src]);
+        self.normal.push(self.normal[src]);
+        self.gaussian.push(self.gaussian[src]);
+        self.mean.push(self.mean[src]);
+        self.flags.push(self.flags[src] | HOLE);
+        i
+    }
+
     /// Vertex `dst` becomes a copy of `src` flagged [`HOLE`].
     fn copy_sample(&mut self, src: usize, dst: usize) {
         let (p, n, k, h) = (
@@ -444,15 +456,7 @@ fn hole_fans(p: &PatchRecord<f64>, g: usize, at: impl Fn(u32, u32) -> u32, out: 
         let edge: Vec<usize> = edge_samples(e, g)
             .map(|(a, b)| at(a as u32, b as u32) as usize)
             .collect();
-        let copies: Vec<u32> = edge
-            .iter()
-            .map(|&s| {
-                let i = out.len();
-                out.push([0.0; 3], [0.0; 3], 0.0, 0.0, 0);
-                out.copy_sample(s, i);
-                i as u32
-            })
-            .collect();
+        let copies: Vec<u32> = edge.iter().map(|&s| out.push_copy(s)).collect();
         let (n, k, h, f) = hole_centre(out, &edge);
         let centre = out.push(p.hole_point.0, n, k, h, f);
         for w in copies.windows(2) {
@@ -529,6 +533,37 @@ mod tests {
             assert_eq!(s.flags[i], 0);
         }
         assert_eq!((s.lo, s.hi), ([0.0, 0.0, 0.0], [1.0, 1.0, 2.0]));
+    }
+
+    #[test]
+    fn the_box_holds_only_the_samples_far_from_the_origin() {
+        // The paraboloid moved by 1000 along every axis, two hole edges and
+        // its hole point next to it: the box is exactly that of the samples,
+        // nowhere near the origin.
+        let mut r = record(0, 0b1001);
+        let PatchGeometry::Cubic(mut t) = r.geometry else {
+            unreachable!()
+        };
+        for p in t.points.iter_mut().flatten() {
+            *p = Point3([p.0[0] + 1000.0, p.0[1] + 1000.0, p.0[2] + 1000.0]);
+        }
+        r.geometry = PatchGeometry::Cubic(t);
+        r.hole_point = Point3([999.0, 999.0, 1000.0]);
+        let mut s = Surface::default();
+        tessellate(&[r], 0, 4, &mut s);
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in &s.position {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        assert_eq!((s.lo, s.hi), (lo, hi));
+        assert_eq!(
+            (s.lo, s.hi),
+            ([999.0, 999.0, 1000.0], [1001.0, 1001.0, 1002.0])
+        );
     }
 
     #[test]
