@@ -152,6 +152,13 @@ pub enum Shade {
     Mean,
 }
 
+/// The default ring depth of `surface`, `render` and `compare`.
+pub const DEFAULT_DEPTH: u32 = 4;
+
+/// The default picture size of `render` and `compare` (per panel), and of
+/// `surface --format png`.
+pub const DEFAULT_SIZE: &str = "800x600";
+
 /// Picture options shared by `render` and `compare`.
 #[derive(Clone, Debug, Args)]
 pub struct PictureArgs {
@@ -159,7 +166,7 @@ pub struct PictureArgs {
     #[arg(long, value_enum, default_value_t = Shade::Plain)]
     pub shade: Shade,
     /// Rings per cap (C²PS levels 0..M, EG/Catmull-Clark steps 1..M).
-    #[arg(long, default_value_t = 5, value_name = "M",
+    #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=12))]
     pub depth: u32,
     /// Camera: azimuth and elevation in degrees, `AZ,EL`.
@@ -167,7 +174,7 @@ pub struct PictureArgs {
           value_parser = parse_view, allow_hyphen_values = true)]
     pub view: (f64, f64),
     /// Image size in pixels (per panel for `compare`), `WxH`.
-    #[arg(long, default_value = "640x480", value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, default_value = DEFAULT_SIZE, value_name = "WxH", value_parser = parse_size)]
     pub size: (usize, usize),
     /// Tessellation segments per patch side (shading is per pixel anyway).
     #[arg(long, default_value_t = 6, value_name = "G",
@@ -242,7 +249,7 @@ fn parse_view(s: &str) -> Result<(f64, f64), String> {
 }
 
 fn parse_size(s: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("'{s}' is not WIDTHxHEIGHT with sides 64..=4096 (e.g. 640x480)");
+    let bad = || format!("'{s}' is not WIDTHxHEIGHT with sides 64..=4096 (e.g. 800x600)");
     let (w, h) = s.split_once('x').ok_or_else(bad)?;
     let w: usize = w.trim().parse().map_err(|_| bad())?;
     let h: usize = h.trim().parse().map_err(|_| bad())?;
@@ -453,7 +460,7 @@ pub struct PatchesArgs {
 #[derive(Clone, Debug, Args)]
 pub struct SurfaceArgs {
     /// Rings every cap emits (C²PS levels, EG and Catmull-Clark steps).
-    #[arg(long, default_value_t = 6, value_name = "M",
+    #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=16))]
     pub depth: u32,
     /// Output format: `json` — `{"patches", "caps", "summary"}` (every
