@@ -159,12 +159,34 @@ pub const DEFAULT_DEPTH: u32 = 4;
 /// `surface --format png`.
 pub const DEFAULT_SIZE: &str = "800x600";
 
+/// The world axis that points up in a picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum UpArg {
+    /// `+z` up (azimuth in the xy-plane from `+x` towards `+y`).
+    Z,
+    /// `+y` up (azimuth in the zx-plane from `+x` towards `−z`).
+    Y,
+}
+
 /// Picture options shared by `render` and `compare`.
 #[derive(Clone, Debug, Args)]
 pub struct PictureArgs {
     /// Shading.
     #[arg(long, value_enum, default_value_t = Shade::Plain)]
     pub shade: Shade,
+    /// Highlight lines: light-line spacings across the picture's height
+    /// (a flat region facing the light shows this many stripes, whatever the
+    /// zoom; curved regions more).
+    #[arg(long, default_value_t = 10.0, value_name = "N", value_parser = parse_lines)]
+    pub lines: f64,
+    /// Highlight lines: direction from the surface to the light plane, `X,Y,Z`
+    /// [default: towards the camera].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_light, allow_hyphen_values = true)]
+    pub light: Option<[f64; 3]>,
+    /// The world axis pointing up in the picture; `--view`'s azimuth turns
+    /// about it, its elevation rises towards it.
+    #[arg(long, value_enum, default_value_t = UpArg::Z)]
+    pub up: UpArg,
     /// Rings per cap (C²PS levels 0..M, EG/Catmull-Clark steps 1..M).
     #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=12))]
@@ -246,6 +268,32 @@ fn parse_view(s: &str) -> Result<(f64, f64), String> {
         return Err(bad());
     }
     Ok((a, e))
+}
+
+fn parse_lines(s: &str) -> Result<f64, String> {
+    let bad = || format!("'{s}' is not a number of light lines in 0.5..=2000 (e.g. 10)");
+    let n: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(0.5..=2000.0).contains(&n) {
+        return Err(bad());
+    }
+    Ok(n)
+}
+
+fn parse_light(s: &str) -> Result<[f64; 3], String> {
+    let bad =
+        || format!("'{s}' is not a direction X,Y,Z of finite numbers, not all 0 (e.g. 0,-1,1)");
+    let parts: Vec<&str> = s.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(bad());
+    };
+    let mut v = [0.0f64; 3];
+    for (c, t) in v.iter_mut().zip([x, y, z]) {
+        *c = t.trim().parse().map_err(|_| bad())?;
+    }
+    if v.iter().any(|c| !c.is_finite()) || v.iter().all(|&c| c == 0.0) {
+        return Err(bad());
+    }
+    Ok(v)
 }
 
 fn parse_size(s: &str) -> Result<(usize, usize), String> {

@@ -1,8 +1,239 @@
 //! The CLI's pictures as a user meets them: one set of defaults (depth 4,
-//! 800×600) for `surface`, `render` and `compare`.
+//! 800×600) for `surface`, `render` and `compare`; highlight stripes that
+//! are resolved (or fade) instead of aliasing on a tall object; the up
+//! axis; the options' errors.
 mod common;
 
+use capdiv_cli::input::{Input, MeshJson};
+use capdiv_cli::picture::{highlight_lines, probe, Camera, LightLines};
+use capdiv_mesh::MeshInput;
 use common::*;
+
+struct Png {
+    w: usize,
+    h: usize,
+    rgb: Vec<u8>,
+}
+
+fn read_png(path: &std::path::Path) -> Png {
+    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = dec.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    Png {
+        w: info.width as usize,
+        h: info.height as usize,
+        rgb: buf,
+    }
+}
+
+impl Png {
+    fn at(&self, x: usize, y: usize) -> [u8; 3] {
+        let k = 3 * (y * self.w + x);
+        [self.rgb[k], self.rgb[k + 1], self.rgb[k + 2]]
+    }
+}
+
+const BACKGROUND: [u8; 3] = [246, 246, 246];
+
+/// A closed tube of radius 1 around the z-axis from z = 0 to z = 12: 13
+/// rings of `n` vertices one unit apart, each end closed by a fan to a pole
+/// vertex (C²PS caps), faces counter-clockwise about the outward normal.
+/// The cubic B-spline surface between the second and second-to-last ring
+/// is exactly a vertical cylinder in z (equally spaced, identical rings): its
+/// normals are horizontal.
+fn tall_tube(n: usize) -> MeshInput {
+    let rings = 13;
+    let mut v = vec![[0.0, 0.0, 0.0]];
+    for i in 0..rings {
+        for j in 0..n {
+            let t = std::f64::consts::TAU * j as f64 / n as f64;
+            v.push([t.cos(), t.sin(), i as f64]);
+        }
+    }
+    v.push([0.0, 0.0, (rings - 1) as f64]);
+    let top = (v.len() - 1) as u32;
+    let id = |i: usize, j: usize| (1 + i * n + j % n) as u32;
+    let mut f = Vec::new();
+    for j in 0..n {
+        f.push(vec![0, id(0, j + 1), id(0, j)]);
+        f.push(vec![top, id(rings - 1, j), id(rings - 1, j + 1)]);
+    }
+    for i in 0..rings - 1 {
+        for j in 0..n {
+            f.push(vec![id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j)]);
+        }
+    }
+    MeshInput::new(v, f)
+}
+
+fn obj_of(m: &MeshInput) -> String {
+    let mut obj = String::new();
+    for v in &m.vertices {
+        obj += &format!("v {} {} {}\n", v[0], v[1], v[2]);
+    }
+    for f in &m.faces {
+        let ids: Vec<String> = f.iter().map(|i| (i + 1).to_string()).collect();
+        obj += &format!("f {}\n", ids.join(" "));
+    }
+    obj
+}
+
+/// The rows of the middle 60 % of the drawn span of column `x`.
+fn middle_rows(png: &Png, x: usize) -> std::ops::Range<usize> {
+    let drawn: Vec<usize> = (0..png.h).filter(|&y| png.at(x, y) != BACKGROUND).collect();
+    let (a, b) = (drawn[0], *drawn.last().unwrap());
+    let cut = (b - a) / 5;
+    a + cut..b - cut
+}
+
+/// Highlight stripes on a tall cylinder, seen from the side (`--view 90,0`:
+/// camera on `+y`, level) with the default light (the plane faces the
+/// camera, lines along the screen's horizontal). A side point `p` has a
+/// horizontal normal `n`, so the normal line `p + μn` meets the light plane
+/// `y = const` at height `p_z`: the stripes are the heights `p_z` a whole
+/// spacing apart, and with `N` spacings across the picture's 600 rows they
+/// are exactly `600/N` pixels apart on screen, whatever the fit.
+///
+/// Along the middle column of the cylinder (constant normal, so constant
+/// Lambert shading and red channel `g·(1 − i)`, `i` the stripe intensity):
+/// - `N` = 37 and 90 (periods 16.2 and 6.7 pixels): the stripes are counted
+///   as runs of rows darker than half the darkest; their count is the
+///   analytic `rows / period` within 1, every gap between stripe centres is
+///   the period within 1 pixel, and every stripe's darkness is at least 40 %
+///   of the darkest (a stripe narrower than a pixel neither vanishes nor
+///   flickers: a 6.7-pixel period has stripes 1.6 pixels wide, whose share of
+///   a pixel varies with their phase between 0.40 and 0.69).
+/// - `N` = 433 (period 1.39 pixels, beyond what 600 rows can show): the
+///   column is flat (red within 2 levels) — no false stripes. Sampling the
+///   stripe pulse at the same supersamples without the footprint filter
+///   (the library's `HighlightLines::intensity`, averaged 2×2) gives a moiré
+///   of more than 0.2 in intensity there: without the anti-aliasing this
+///   check fails.
+#[test]
+fn highlight_stripes_on_a_tall_cylinder_are_resolved_not_aliased() {
+    let dir = tempdir();
+    let mesh = tall_tube(12);
+    let obj = dir.path().join("tube.obj");
+    std::fs::write(&obj, obj_of(&mesh)).unwrap();
+    let picture = |lines: f64| {
+        let out = dir.path().join(format!("tube-{lines}.png"));
+        let n = lines.to_string();
+        let args = [
+            "render",
+            "--shade",
+            "highlight",
+            "--view",
+            "90,0",
+            "--lines",
+            &n,
+            s(&obj),
+            "-o",
+            s(&out),
+        ];
+        capdiv(&args, None).assert_ok();
+        read_png(&out)
+    };
+    for lines in [37.0, 90.0] {
+        let png = picture(lines);
+        assert_eq!((png.w, png.h), (800, 600));
+        let period = 600.0 / lines;
+        let mid_row = png.h / 2;
+        let xs: Vec<usize> = (0..png.w)
+            .filter(|&x| png.at(x, mid_row) != BACKGROUND)
+            .collect();
+        let x = (xs[0] + xs[xs.len() - 1]) / 2;
+        let rows = middle_rows(&png, x);
+        let red: Vec<f64> = rows.clone().map(|y| png.at(x, y)[0] as f64).collect();
+        let g = red.iter().cloned().fold(0.0, f64::max);
+        let dark: Vec<f64> = red.iter().map(|r| 1.0 - r / g).collect();
+        let top = dark.iter().cloned().fold(0.0, f64::max);
+        assert!(top > 0.3, "N = {lines}: no stripe ({top})");
+        // Runs above half the darkest: centre (darkness-weighted) and peak.
+        let mut stripes: Vec<(f64, f64)> = Vec::new();
+        let mut run: Vec<(usize, f64)> = Vec::new();
+        for (k, &d) in dark.iter().chain([0.0].iter()).enumerate() {
+            if d > 0.5 * top {
+                run.push((k, d));
+            } else if !run.is_empty() {
+                let mass: f64 = run.iter().map(|r| r.1).sum();
+                let centre = run.iter().map(|r| r.0 as f64 * r.1).sum::<f64>() / mass;
+                let peak = run.iter().map(|r| r.1).fold(0.0, f64::max);
+                stripes.push((centre, peak));
+                run.clear();
+            }
+        }
+        let want = dark.len() as f64 / period;
+        assert!(
+            (stripes.len() as f64 - want).abs() <= 1.0,
+            "N = {lines}: {} stripes in {} rows, want {want:.1}",
+            stripes.len(),
+            dark.len()
+        );
+        for w in stripes.windows(2) {
+            let gap = w[1].0 - w[0].0;
+            assert!(
+                (gap - period).abs() <= 1.0,
+                "N = {lines}: gap {gap:.2}, period {period}: {stripes:?}"
+            );
+        }
+        let weakest = stripes.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
+        assert!(
+            weakest >= 0.4 * top,
+            "N = {lines}: a stripe of {weakest:.2} against {top:.2}"
+        );
+        println!(
+            "N = {lines}: {} stripes (analytic {want:.1}), darkness {weakest:.2}..{top:.2}",
+            stripes.len()
+        );
+    }
+
+    // Too dense for the pixels: flat, where point samples alias.
+    let lines = 433.0;
+    let png = picture(lines);
+    let mid_row = png.h / 2;
+    let xs: Vec<usize> = (0..png.w)
+        .filter(|&x| png.at(x, mid_row) != BACKGROUND)
+        .collect();
+    let x = (xs[0] + xs[xs.len() - 1]) / 2;
+    let rows = middle_rows(&png, x);
+    let red: Vec<u8> = rows.clone().map(|y| png.at(x, y)[0]).collect();
+    let (lo, hi) = (red.iter().min().unwrap(), red.iter().max().unwrap());
+    assert!(hi - lo <= 2, "N = {lines}: red {lo}..{hi} along the column");
+
+    let shape =
+        capdiv_cli::shape::build("tube", &Input::Mesh(MeshJson::of(&mesh)), None, 4).unwrap();
+    let cam = Camera {
+        azimuth: 90.0,
+        elevation: 0.0,
+        ..Camera::default()
+    };
+    let light = LightLines {
+        lines,
+        ..LightLines::default()
+    };
+    let family = highlight_lines(&[&shape], &cam, &light).unwrap();
+    let samples = &probe(&[&shape], &cam)[0];
+    let w = 2 * cam.width;
+    let naive: Vec<f64> = rows
+        .map(|y| {
+            let mut sum = 0.0;
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let smp = samples[(2 * y + dy) * w + 2 * x + dx].unwrap();
+                sum += family.intensity(smp.point, smp.normal, 0.12);
+            }
+            sum / 4.0
+        })
+        .collect();
+    let spread = naive.iter().cloned().fold(0.0, f64::max)
+        - naive.iter().cloned().fold(f64::INFINITY, f64::min);
+    assert!(
+        spread > 0.2,
+        "point samples would not alias here ({spread})"
+    );
+    println!("N = {lines}: red {lo}..{hi}; point-sampled intensity spread {spread:.2}");
+}
 
 fn png_size(path: &std::path::Path) -> (usize, usize) {
     let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
@@ -68,5 +299,74 @@ fn one_set_of_defaults() {
         if cmd != "surface" {
             assert!(help.contains("[default: 800x600]"), "{cmd}: {help}");
         }
+    }
+}
+
+/// The drawn pixels' bounding box: width and height.
+fn drawn_box(png: &Png) -> (usize, usize) {
+    let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
+    for y in 0..png.h {
+        for x in 0..png.w {
+            if png.at(x, y) != BACKGROUND {
+                (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+            }
+        }
+    }
+    (x1 + 1 - x0, y1 + 1 - y0)
+}
+
+/// `--up`: the tube turned to lie along `y` (13 units long, 2 across),
+/// seen level from `+x` (`--view 0,0`), stands upright with `--up y` (drawn
+/// box more than 3 times as tall as wide) and lies on its side with the
+/// default `--up z` (more than 3 times as wide as tall).
+#[test]
+fn up_axis_turns_the_picture() {
+    let dir = tempdir();
+    let mut mesh = tall_tube(12);
+    for v in &mut mesh.vertices {
+        *v = [v[0], v[2], -v[1]];
+    }
+    let obj = dir.path().join("tube-y.obj");
+    std::fs::write(&obj, obj_of(&mesh)).unwrap();
+    for (up, tall) in [(Some("y"), true), (None, false)] {
+        let out = dir.path().join("up.png");
+        let mut args = vec!["render", "--view", "0,0", "--size", "300x300"];
+        if let Some(u) = up {
+            args.extend_from_slice(&["--up", u]);
+        }
+        args.extend_from_slice(&[s(&obj), "-o", s(&out)]);
+        capdiv(&args, None).assert_ok();
+        let (w, h) = drawn_box(&read_png(&out));
+        if tall {
+            assert!(h > 3 * w, "--up y: drawn {w}x{h}");
+        } else {
+            assert!(w > 3 * h, "--up z: drawn {w}x{h}");
+        }
+    }
+}
+
+/// Bad picture options are one line `error: …`, exit 2, no file.
+#[test]
+fn bad_picture_options_are_one_line_errors() {
+    let dir = tempdir();
+    let out = dir.path().join("x.png");
+    let o = s(&out);
+    for (args, want) in [
+        (vec!["--light", "0,0,0"], "X,Y,Z"),
+        (vec!["--light", "1,2"], "X,Y,Z"),
+        (vec!["--light", "1,nan,2"], "X,Y,Z"),
+        (vec!["--lines", "0"], "light lines"),
+        (vec!["--lines", "many"], "light lines"),
+        (vec!["--up", "x"], "--up"),
+    ] {
+        let mut all = vec!["render", "--shade", "highlight"];
+        all.extend_from_slice(&args);
+        all.extend_from_slice(&["sample:eg-convex-n3", "-o", o]);
+        let run = capdiv(&all, None);
+        assert_eq!(run.code, Some(2), "{args:?}");
+        assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+        assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
+        assert!(run.stderr.contains(want), "{args:?}: {}", run.stderr);
+        assert!(!out.exists());
     }
 }

@@ -4,10 +4,10 @@
 //! [`crate::shape`]; the last hole is hatched.
 
 use super::Outcome;
-use crate::args::{PictureArgs, RenderArgs, Shade};
+use crate::args::{PictureArgs, RenderArgs, Shade, UpArg};
 use crate::error::CliError;
 use crate::output::Sink;
-use crate::picture::{draw, png, Camera, Shading};
+use crate::picture::{draw, png, Camera, LightLines, Shading, Up};
 use crate::shape::{build, drawable, override_boundary, read_any};
 
 /// The picture options as the drawing's.
@@ -18,10 +18,18 @@ pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
         azimuth: p.view.0,
         elevation: p.view.1,
         grid: p.grid as usize,
+        up: match p.up {
+            UpArg::Z => Up::Z,
+            UpArg::Y => Up::Y,
+        },
+        focus: None,
     };
     let shading = match p.shade {
         Shade::Plain => Shading::Plain,
-        Shade::Highlight => Shading::Highlight,
+        Shade::Highlight => Shading::Highlight(LightLines {
+            direction: p.light,
+            lines: p.lines,
+        }),
         Shade::Gauss => Shading::Gauss,
         Shade::Mean => Shading::Mean,
     };
