@@ -183,6 +183,16 @@ pub struct PictureArgs {
     /// [default: towards the camera].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_light, allow_hyphen_values = true)]
     pub light: Option<[f64; 3]>,
+    /// Frame the neighbourhood of vertex V's cap, V numbered as the input
+    /// numbers it (OBJ: from 1; JSON mesh: from 0; polar net, c-net, d-net:
+    /// 0, the pole or centre).
+    #[arg(long, value_name = "V")]
+    pub focus: Option<usize>,
+    /// With --focus: magnification; at 1 the picture's shorter side spans
+    /// the vertex's 1-ring (twice its longest edge).
+    #[arg(long, default_value_t = crate::focus::DEFAULT_ZOOM, value_name = "Z",
+          value_parser = parse_zoom, requires = "focus")]
+    pub zoom: f64,
     /// The world axis pointing up in the picture; `--view`'s azimuth turns
     /// about it, its elevation rises towards it.
     #[arg(long, value_enum, default_value_t = UpArg::Z)]
@@ -268,6 +278,15 @@ fn parse_view(s: &str) -> Result<(f64, f64), String> {
         return Err(bad());
     }
     Ok((a, e))
+}
+
+fn parse_zoom(s: &str) -> Result<f64, String> {
+    let bad = || format!("'{s}' is not a magnification in 0.1..=100000 (e.g. 4)");
+    let z: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(0.1..=100000.0).contains(&z) {
+        return Err(bad());
+    }
+    Ok(z)
 }
 
 fn parse_lines(s: &str) -> Result<f64, String> {

@@ -21,6 +21,8 @@
 //!   lines, curvature maps with legends), one panel per scheme;
 //! - [`camera`]: the pictures' view (azimuth, elevation, up axis) and its
 //!   map to pixels, fitted or framed on a focus;
+//! - [`focus`]: `--focus V`, the neighbourhood of a vertex's cap a zoomed
+//!   picture frames;
 //! - [`stripes`]: highlight lines set up relative to the view and
 //!   anti-aliased;
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
@@ -35,6 +37,7 @@ pub mod capacity;
 pub mod commands;
 pub mod error;
 pub mod export;
+pub mod focus;
 pub mod input;
 pub mod mesh;
 pub mod obj;

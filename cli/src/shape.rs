@@ -60,6 +60,19 @@ pub enum Limit {
     Undefined(&'static str),
 }
 
+/// One cap of a [`Shape`]: where it sits and what made it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeCap {
+    /// The input vertex at its centre (0-based; polar: 0 is the pole,
+    /// c-net and d-net: 0 is the centre), if it is at one.
+    pub vertex: Option<u32>,
+    /// The scheme as pictures name it (`C2PS`, `RTS`, `EG`,
+    /// `Catmull-Clark`).
+    pub scheme: &'static str,
+    /// Its limit point.
+    pub limit: [f64; 3],
+}
+
 /// A surface to draw or measure.
 #[derive(Clone, Debug)]
 pub struct Shape {
@@ -71,6 +84,8 @@ pub struct Shape {
     pub patches: Vec<ShapePatch>,
     /// The limit curvature at the centre.
     pub limit: Limit,
+    /// Its caps.
+    pub caps: Vec<ShapeCap>,
 }
 
 /// Why EG has no limit value here.
@@ -239,6 +254,11 @@ impl NetJob<f64> for PolarJob<'_> {
             label: if self.rts { "RTS" } else { "C2PS" },
             patches,
             limit,
+            caps: vec![ShapeCap {
+                vertex: Some(0),
+                scheme: if self.rts { "RTS" } else { "C2PS" },
+                limit: hole_point,
+            }],
         })
     }
 }
@@ -275,6 +295,11 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
         label: "EG",
         patches,
         limit: Limit::Undefined(EG_NO_LIMIT),
+        caps: vec![ShapeCap {
+            vertex: Some(0),
+            scheme: "EG",
+            limit: hole_point,
+        }],
     })
 }
 
@@ -305,6 +330,11 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
         label: "Catmull-Clark",
         patches,
         limit: Limit::Undefined(CC_NO_LIMIT),
+        caps: vec![ShapeCap {
+            vertex: Some(0),
+            scheme: "Catmull-Clark",
+            limit: hole_point,
+        }],
     })
 }
 
@@ -412,10 +442,31 @@ fn mesh_shape(
         .map(|p| p.level)
         .min()
         .unwrap_or(0);
+    let kept = |p: &&PatchRecord<f64>| keep.is_none_or(|k| (p.face as usize) < k);
+    // The caps with a patch kept.
+    let caps = out
+        .caps
+        .iter()
+        .filter(|c| {
+            out.patches
+                .iter()
+                .filter(kept)
+                .any(|p| p.cap == Some(c.index))
+        })
+        .map(|c| ShapeCap {
+            vertex: c.vertex,
+            scheme: match c.scheme {
+                Scheme::C2ps => "C2PS",
+                Scheme::Eg => "EG",
+                Scheme::CatmullClark => "Catmull-Clark",
+            },
+            limit: c.limit.0,
+        })
+        .collect();
     let patches = out
         .patches
         .iter()
-        .filter(|p| keep.is_none_or(|k| (p.face as usize) < k))
+        .filter(kept)
         .map(|p| {
             let ring = p.cap.is_some_and(|c| followed.contains(&c));
             ShapePatch {
@@ -444,6 +495,7 @@ fn mesh_shape(
         },
         patches,
         limit,
+        caps,
     })
 }
 

@@ -1,7 +1,7 @@
 //! The CLI's pictures as a user meets them: one set of defaults (depth 4,
 //! 800×600) for `surface`, `render` and `compare`; highlight stripes that
 //! are resolved (or fade) instead of aliasing on a tall object; the up
-//! axis; the options' errors.
+//! axis; `--focus` framing a vertex's cap; the options' errors.
 mod common;
 
 use capdiv_cli::input::{Input, MeshJson};
@@ -368,5 +368,148 @@ fn bad_picture_options_are_one_line_errors() {
         assert!(run.stderr.starts_with("error: "), "{}", run.stderr);
         assert!(run.stderr.contains(want), "{args:?}: {}", run.stderr);
         assert!(!out.exists());
+    }
+}
+
+const HATCH: [[u8; 3]; 2] = [[200, 0, 160], [255, 255, 255]];
+
+fn hatched(png: &Png) -> usize {
+    (0..png.h)
+        .flat_map(|y| (0..png.w).map(move |x| (x, y)))
+        .filter(|&(x, y)| png.at(x, y) == HATCH[0])
+        .count()
+}
+
+/// `--focus V --zoom Z` on the tall tube, whose top pole (OBJ vertex 158,
+/// JSON vertex 157) has a C²PS cap:
+/// - the cap's limit point is at the picture's centre: the centre pixel is
+///   the hatched hole (the hole closes to the limit point), in `render` and
+///   in both `compare` panels;
+/// - the OBJ's vertex 158 and the same mesh as JSON's vertex 157 give the
+///   same picture, byte for byte (each file's own numbering);
+/// - the view is orthographic, so the hole's hatched area grows with the
+///   square of the zoom: zoom 4 against zoom 2 is 4 within 10 % (the hole's
+///   rim is a few hundred of some 10⁴ pixels);
+/// - a regular vertex halfway up the side facing the camera (OBJ 84, at
+///   azimuth −60°), framed at zoom 4 (a quarter of its 1-ring each side of
+///   the centre), fills the picture: no background pixel.
+#[test]
+fn focus_frames_a_vertex_cap() {
+    let dir = tempdir();
+    let mesh = tall_tube(12);
+    let obj = dir.path().join("tube.obj");
+    std::fs::write(&obj, obj_of(&mesh)).unwrap();
+    let json = write_json(
+        dir.path(),
+        "tube.json",
+        &serde_json::json!({"kind": "mesh", "vertices": mesh.vertices, "faces": mesh.faces}),
+    );
+    let render = |file: &std::path::Path, args: &[&str], name: &str| {
+        let out = dir.path().join(name);
+        let mut all = vec!["render"];
+        all.extend_from_slice(args);
+        all.extend_from_slice(&[s(file), "-o", s(&out)]);
+        capdiv(&all, None).assert_ok();
+        out
+    };
+    let top = render(&obj, &["--focus", "158"], "top.png");
+    let png = read_png(&top);
+    assert!(
+        HATCH.contains(&png.at(400, 300)),
+        "centre {:?}",
+        png.at(400, 300)
+    );
+    let top_json = render(&json, &["--focus", "157"], "top-json.png");
+    assert_eq!(
+        std::fs::read(&top).unwrap(),
+        std::fs::read(&top_json).unwrap(),
+        "OBJ vertex 158 and JSON vertex 157 frame differently"
+    );
+    let zoom2 = read_png(&render(&obj, &["--focus", "158", "--zoom", "2"], "z2.png"));
+    let (a4, a2) = (hatched(&png), hatched(&zoom2));
+    let ratio = a4 as f64 / a2 as f64;
+    assert!(
+        (ratio - 4.0).abs() < 0.4,
+        "hatched {a4} at zoom 4, {a2} at 2"
+    );
+    println!("hole: {a4} hatched pixels at zoom 4, {a2} at zoom 2 (ratio {ratio:.3})");
+
+    let side = read_png(&render(&obj, &["--focus", "84"], "side.png"));
+    let empty = (0..side.h)
+        .flat_map(|y| (0..side.w).map(move |x| (x, y)))
+        .filter(|&(x, y)| side.at(x, y) == BACKGROUND)
+        .count();
+    assert_eq!(
+        empty, 0,
+        "a regular vertex's neighbourhood leaves background"
+    );
+
+    let out = dir.path().join("compare.png");
+    let run = capdiv(
+        &[
+            "compare",
+            "--focus",
+            "158",
+            "--size",
+            "300x200",
+            s(&obj),
+            "-o",
+            s(&out),
+        ],
+        None,
+    );
+    run.assert_ok();
+    let png = read_png(&out);
+    assert_eq!(png.w, 2 * 300 + 8);
+    for panel in 0..2 {
+        let c = png.at(panel * 308 + 150, 20 + 100);
+        assert!(HATCH.contains(&c), "panel {panel}: centre {c:?}");
+    }
+}
+
+/// `--focus` errors: one line, exit 2, naming the vertex numbers the file
+/// has (OBJ from 1, JSON from 0; a polar net's only cap is vertex 0);
+/// `--zoom` without `--focus` and a zoom out of range are refused.
+#[test]
+fn focus_out_of_range_is_a_one_line_error() {
+    let dir = tempdir();
+    let mesh = tall_tube(12);
+    let obj = dir.path().join("tube.obj");
+    std::fs::write(&obj, obj_of(&mesh)).unwrap();
+    let json = write_json(
+        dir.path(),
+        "tube.json",
+        &serde_json::json!({"kind": "mesh", "vertices": mesh.vertices, "faces": mesh.faces}),
+    );
+    let out = dir.path().join("x.png");
+    let o = s(&out);
+    for (args, want) in [
+        (
+            vec!["render", "--focus", "159", s(&obj)],
+            "vertices 1..=158",
+        ),
+        (vec!["render", "--focus", "0", s(&obj)], "vertices 1..=158"),
+        (
+            vec!["compare", "--focus", "158", s(&json)],
+            "vertices 0..=157",
+        ),
+        (
+            vec!["render", "--focus", "1", "sample:c2ps-saddle-n8"],
+            "one cap, at vertex 0",
+        ),
+        (vec!["render", "--zoom", "2", s(&obj)], "--focus"),
+        (
+            vec!["render", "--focus", "1", "--zoom", "0", s(&obj)],
+            "magnification",
+        ),
+        (vec!["render", "--focus", "-1", s(&obj)], "'-1'"),
+    ] {
+        let mut all = args.clone();
+        all.extend_from_slice(&["-o", o]);
+        let run = capdiv(&all, None);
+        assert_eq!(run.code, Some(2), "{args:?}");
+        assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+        assert!(run.stderr.contains(want), "{args:?}: {}", run.stderr);
+        assert!(!out.exists(), "{args:?}");
     }
 }

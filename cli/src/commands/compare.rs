@@ -4,7 +4,7 @@
 //! c-net — EG, Catmull-Clark; d-net — EG; mesh — the default pipeline
 //! (C²PS/EG), Catmull-Clark.
 
-use super::render::{camera, png_bytes};
+use super::render::{camera, framed, png_bytes};
 use super::Outcome;
 use crate::args::CompareArgs;
 use crate::error::CliError;
@@ -25,7 +25,12 @@ pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
         drawable(&name, s, args.picture.depth)?;
     }
     let refs: Vec<&Shape> = shapes.iter().collect();
-    let (cam, shading) = camera(&args.picture);
+    let (mut cam, shading) = camera(&args.picture);
+    // Framed on the first (the input's default) scheme's cap.
+    cam.focus = match shapes.first() {
+        Some(first) => framed(&name, &input, &naming, first, &args.picture)?,
+        None => None,
+    };
     let pic = draw(&refs, &cam, shading, true);
     Ok(Outcome::new(
         png_bytes(&pic)?,

@@ -5,10 +5,12 @@
 
 use super::Outcome;
 use crate::args::{PictureArgs, RenderArgs, Shade, UpArg};
-use crate::error::CliError;
+use crate::error::{CliError, Naming};
+use crate::focus::focus;
+use crate::input::Input;
 use crate::output::Sink;
-use crate::picture::{draw, png, Camera, LightLines, Shading, Up};
-use crate::shape::{build, drawable, override_boundary, read_any};
+use crate::picture::{draw, png, Camera, Focus, LightLines, Shading, Up};
+use crate::shape::{build, drawable, override_boundary, read_any, Shape};
 
 /// The picture options as the drawing's.
 pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
@@ -36,6 +38,19 @@ pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
     (cam, shading)
 }
 
+/// The region `--focus` frames (its vertex looked up in `shape`), if asked.
+pub fn framed(
+    name: &str,
+    input: &Input,
+    naming: &Naming,
+    shape: &Shape,
+    p: &PictureArgs,
+) -> Result<Option<Focus>, CliError> {
+    p.focus
+        .map(|v| focus(name, input, naming, shape, v, p.zoom))
+        .transpose()
+}
+
 /// PNG bytes, or the encoder's error.
 pub fn png_bytes(pic: &crate::picture::Picture) -> Result<Vec<u8>, CliError> {
     png(pic).map_err(|e| CliError::Io {
@@ -51,7 +66,8 @@ pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
     let shape =
         build(&name, &input, args.scheme, args.picture.depth).map_err(|e| e.named(&naming))?;
     drawable(&name, &shape, args.picture.depth)?;
-    let (cam, shading) = camera(&args.picture);
+    let (mut cam, shading) = camera(&args.picture);
+    cam.focus = framed(&name, &input, &naming, &shape, &args.picture)?;
     let pic = draw(&[&shape], &cam, shading, false);
     Ok(Outcome::new(
         png_bytes(&pic)?,
