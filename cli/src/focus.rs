@@ -25,7 +25,7 @@ fn dist(a: V3, b: V3) -> f64 {
 
 /// The input's 0-based vertex for the number `number` as the file gives
 /// it, or a one-line error naming the numbers there are.
-fn vertex_index(
+pub fn vertex_index(
     name: &str,
     input: &Input,
     naming: &Naming,
@@ -149,4 +149,14 @@ fn nearest_corner(shape: &Shape, p: V3) -> Option<V3> {
         })
         .filter(|q| q.iter().all(|c| c.is_finite()))
         .min_by(|a, b| dist(*a, p).total_cmp(&dist(*b, p)))
+}
+
+/// A panel's label under `--focus`: the cap at the vertex of 0-based
+/// `index` (numbered `number` in the file), `vertex 7: EG cap`, or
+/// `vertex 7: no cap; ` and the shape's own label.
+pub fn focus_label(shape: &Shape, index: usize, number: usize) -> String {
+    match shape.caps.iter().find(|c| c.vertex == Some(index as u32)) {
+        Some(c) => format!("vertex {number}: {} cap", c.scheme),
+        None => format!("vertex {number}: no cap; {}", shape.label),
+    }
 }

@@ -396,8 +396,10 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
             }
         }
         if top > 0 {
-            let label = shapes[panel].label;
-            pic.text(x0 + 6, 4, label, 1, [20, 20, 20]);
+            // Clipped to the panel.
+            let room = cam.width.saturating_sub(12) / 8;
+            let label: String = shapes[panel].label.chars().take(room).collect();
+            pic.text(x0 + 6, 4, &label, 1, [20, 20, 20]);
         }
     }
     if let Some(m) = scale {
@@ -406,7 +408,24 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     pic
 }
 
-/// The colour bar under a curvature map: `−m … 0 … +m` with the numbers.
+/// What the sign of a curvature map's value means, as its legend states it.
+/// The normal is the patches' `∂u × ∂v`, which points out of a closed mesh
+/// whose faces run counter-clockwise seen from outside; `H` is positive
+/// where the surface bends towards that normal, so an outward unit sphere
+/// has `H = −1` (and the paraboloid `z = (x² + y²)/2` with its normal up
+/// `H = +1`). `K`'s sign does not depend on the normal.
+pub fn sign_convention(shading: Shading) -> Option<&'static str> {
+    match shading {
+        Shading::Mean => {
+            Some("H > 0: bends towards the normal (du x dv). Outward unit sphere: H = -1")
+        }
+        Shading::Gauss => Some("K > 0: dome or bowl, K < 0: saddle (either normal)"),
+        _ => None,
+    }
+}
+
+/// The colour bar under a curvature map: `−m … 0 … +m` with the numbers,
+/// and the sign convention ([`sign_convention`]) below.
 fn legend(pic: &mut Picture, y0: usize, m: f64, shading: Shading) {
     let (x0, x1) = (16usize, pic.width.saturating_sub(16).max(17));
     let bar = 10;
@@ -431,6 +450,9 @@ fn legend(pic: &mut Picture, y0: usize, m: f64, shading: Shading) {
     pic.text(x1.saturating_sub(8 * hi.len()), ty, &hi, 1, ink);
     let title = format!("{name} (clamped beyond)");
     pic.text(mid + 24, ty, &title, 1, ink);
+    if let Some(rule) = sign_convention(shading) {
+        pic.text(x0, ty + 12, rule, 1, ink);
+    }
     // Tick marks at both ends and the middle.
     for x in [x0, mid, x1 - 1] {
         for y in y0 + 2..y0 + 6 {

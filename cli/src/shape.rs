@@ -78,8 +78,9 @@ pub struct ShapeCap {
 pub struct Shape {
     /// The scheme's name (`c2ps`, `rts`, `eg`, `catmull-clark`, `mesh`).
     pub scheme: &'static str,
-    /// A label for pictures (`C²PS` is drawn as `C2PS`).
-    pub label: &'static str,
+    /// A label for pictures, naming what made the surface (`C²PS` is drawn
+    /// as `C2PS`): the scheme, or for a mesh its caps ([`caps_label`]).
+    pub label: String,
     /// The patches.
     pub patches: Vec<ShapePatch>,
     /// The limit curvature at the centre.
@@ -151,9 +152,7 @@ pub fn build(
         (Input::Mesh(m), s) => {
             let mesh = m.to_mesh(name)?;
             let cc = s == ShapeScheme::CatmullClark;
-            let mut shape = mesh_shape(name, &mesh, depth, cc, None)?;
-            shape.label = if cc { "Catmull-Clark" } else { "C2PS / EG" };
-            shape
+            mesh_shape(name, &mesh, depth, cc, None)?
         }
     };
     let finite = shape.patches.iter().all(|p| match &p.geometry {
@@ -251,7 +250,7 @@ impl NetJob<f64> for PolarJob<'_> {
         };
         Ok(Shape {
             scheme: if self.rts { "rts" } else { "c2ps" },
-            label: if self.rts { "RTS" } else { "C2PS" },
+            label: if self.rts { "RTS" } else { "C2PS" }.into(),
             patches,
             limit,
             caps: vec![ShapeCap {
@@ -292,7 +291,7 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     }
     Ok(Shape {
         scheme: "eg",
-        label: "EG",
+        label: "EG".into(),
         patches,
         limit: Limit::Undefined(EG_NO_LIMIT),
         caps: vec![ShapeCap {
@@ -327,7 +326,7 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     }
     Ok(Shape {
         scheme: "catmull-clark",
-        label: "Catmull-Clark",
+        label: "Catmull-Clark".into(),
         patches,
         limit: Limit::Undefined(CC_NO_LIMIT),
         caps: vec![ShapeCap {
@@ -375,7 +374,7 @@ fn polar_cc(name: &str, input: &PolarInput, depth: u32) -> Result<Shape, CliErro
     let keep = n * 4;
     let mut shape = mesh_shape(name, &mesh, depth, true, Some(keep))?;
     shape.scheme = "catmull-clark";
-    shape.label = "Catmull-Clark";
+    shape.label = "Catmull-Clark".into();
     Ok(shape)
 }
 
@@ -444,7 +443,7 @@ fn mesh_shape(
         .unwrap_or(0);
     let kept = |p: &&PatchRecord<f64>| keep.is_none_or(|k| (p.face as usize) < k);
     // The caps with a patch kept.
-    let caps = out
+    let caps: Vec<ShapeCap> = out
         .caps
         .iter()
         .filter(|c| {
@@ -488,15 +487,28 @@ fn mesh_shape(
         } else {
             "mesh"
         },
-        label: if catmull_clark {
-            "Catmull-Clark"
-        } else {
-            "C2PS / EG"
-        },
+        label: caps_label(&caps),
         patches,
         limit,
         caps,
     })
+}
+
+/// What a mesh surface's caps are, counted by scheme in the order met:
+/// `caps: C2PS x2, EG x8`, or `no caps (B-spline only)`.
+pub fn caps_label(caps: &[ShapeCap]) -> String {
+    let mut counts: Vec<(&str, usize)> = Vec::new();
+    for c in caps {
+        match counts.iter_mut().find(|e| e.0 == c.scheme) {
+            Some(e) => e.1 += 1,
+            None => counts.push((c.scheme, 1)),
+        }
+    }
+    if counts.is_empty() {
+        return "no caps (B-spline only)".into();
+    }
+    let list: Vec<String> = counts.iter().map(|(s, n)| format!("{s} x{n}")).collect();
+    format!("caps: {}", list.join(", "))
 }
 
 /// [`CliError::Usage`] when a shape has no patch to draw (e.g. a polar net

@@ -1,7 +1,8 @@
 //! The CLI's pictures as a user meets them: one set of defaults (depth 4,
 //! 800×600) for `surface`, `render` and `compare`; highlight stripes that
 //! are resolved (or fade) instead of aliasing on a tall object; the up
-//! axis; `--focus` framing a vertex's cap; the options' errors.
+//! axis; `--focus` framing a vertex's cap; what a picture says it draws
+//! (the curvature sign, the panels' schemes); the options' errors.
 mod common;
 
 use capdiv_cli::input::{Input, MeshJson};
@@ -511,5 +512,121 @@ fn focus_out_of_range_is_a_one_line_error() {
         assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
         assert!(run.stderr.contains(want), "{args:?}: {}", run.stderr);
         assert!(!out.exists(), "{args:?}");
+    }
+}
+
+fn mesh_file(dir: &std::path::Path, name: &str, m: &MeshInput) -> std::path::PathBuf {
+    write_json(
+        dir,
+        name,
+        &serde_json::json!({"kind": "mesh", "vertices": m.vertices, "faces": m.faces}),
+    )
+}
+
+/// The mean-curvature legend states its sign convention, and the colours
+/// follow it: `H > 0` where the surface bends towards its normal, so the
+/// globe (a unit sphere of faces counter-clockwise seen from outside:
+/// outward normals) is drawn in the negative, blue half of the bar — as the
+/// legend's "Outward unit sphere: H = -1" says — and the paraboloid
+/// `z = (x² + y²)/2` with its normal up (`sample:c2ps-convex-n20`) in the
+/// positive, red half. Counted over the surface pixels: more than 95 %
+/// bluish (blue above red by 30 levels) for the sphere, more than 95 %
+/// reddish for the paraboloid. The legend's second text row (rows 32..40
+/// of the strip) carries the convention's text: dark pixels there.
+#[test]
+fn mean_curvature_legend_states_and_follows_its_sign() {
+    use capdiv_cli::picture::{sign_convention, Shading, LEGEND_HEIGHT};
+    let rule = sign_convention(Shading::Mean).unwrap();
+    assert!(rule.contains("towards the normal"), "{rule}");
+    assert!(rule.contains("Outward unit sphere: H = -1"), "{rule}");
+    assert!(sign_convention(Shading::Gauss).unwrap().contains("saddle"));
+    assert!(sign_convention(Shading::Plain).is_none());
+
+    let dir = tempdir();
+    let globe = mesh_file(dir.path(), "globe.json", &capdiv_mesh::samples::globe(8, 9));
+    for (file, negative) in [(s(&globe), true), ("sample:c2ps-convex-n20", false)] {
+        let out = dir.path().join("mean.png");
+        capdiv(&["render", "--shade", "mean", file, "-o", s(&out)], None).assert_ok();
+        let png = read_png(&out);
+        assert_eq!(png.h, 600 + LEGEND_HEIGHT);
+        let (mut blue, mut red, mut surface) = (0, 0, 0);
+        for y in 0..600 {
+            for x in 0..png.w {
+                let [r, _, b] = png.at(x, y).map(i32::from);
+                if png.at(x, y) == BACKGROUND || HATCH.contains(&png.at(x, y)) {
+                    continue;
+                }
+                surface += 1;
+                blue += usize::from(b > r + 30);
+                red += usize::from(r > b + 30);
+            }
+        }
+        let (want, other) = if negative { (blue, red) } else { (red, blue) };
+        assert!(
+            want * 100 > 95 * surface,
+            "{file}: {blue} blue, {red} red of {surface} ({other} of the other sign)"
+        );
+        let ink = (600 + 32..600 + 40)
+            .flat_map(|y| (0..png.w).map(move |x| (x, y)))
+            .filter(|&(x, y)| png.at(x, y).iter().all(|&c| c < 60))
+            .count();
+        assert!(ink > 100, "{file}: no sign convention under the bar");
+    }
+}
+
+/// A panel is labelled by what it used. A mesh's label counts its caps by
+/// scheme: the valence-7 disk (no EG rule for 7) gets a Catmull-Clark cap
+/// from the default pipeline too, so both `compare` panels read `caps:
+/// Catmull-Clark x1` and the command notes on stderr that they draw the
+/// same surface; the valence-5 disk's default panel reads `caps: EG x1`
+/// (no note); the tube `caps: C2PS x2`; a torus (every vertex regular) `no
+/// caps (B-spline only)`. With `--focus`, a label names the cap at the
+/// vertex.
+#[test]
+fn compare_labels_panels_by_what_they_used() {
+    use capdiv_cli::args::ShapeScheme;
+    use capdiv_cli::shape::build;
+    use capdiv_mesh::samples::{extraordinary_disk, torus};
+    let label = |m: &MeshInput, scheme: Option<ShapeScheme>| {
+        build("m", &Input::Mesh(MeshJson::of(m)), scheme, 3)
+            .unwrap()
+            .label
+    };
+    let cc = Some(ShapeScheme::CatmullClark);
+    let disk7 = extraordinary_disk(7, 3);
+    let disk5 = extraordinary_disk(5, 3);
+    assert_eq!(label(&disk7, None), "caps: Catmull-Clark x1");
+    assert_eq!(label(&disk7, cc), "caps: Catmull-Clark x1");
+    assert_eq!(label(&disk5, None), "caps: EG x1");
+    assert_eq!(label(&disk5, cc), "caps: Catmull-Clark x1");
+    assert_eq!(label(&tall_tube(12), None), "caps: C2PS x2");
+    assert_eq!(label(&torus(8, 6), None), "no caps (B-spline only)");
+
+    let shape = build("m", &Input::Mesh(MeshJson::of(&disk5)), None, 3).unwrap();
+    let centre = shape.caps[0].vertex.unwrap() as usize;
+    assert_eq!(
+        capdiv_cli::focus::focus_label(&shape, centre, centre),
+        format!("vertex {centre}: EG cap")
+    );
+    assert_eq!(
+        capdiv_cli::focus::focus_label(&shape, centre + 1, centre + 1),
+        format!("vertex {}: no cap; caps: EG x1", centre + 1)
+    );
+
+    let dir = tempdir();
+    let out = dir.path().join("c.png");
+    for (m, note) in [(&disk7, true), (&disk5, false)] {
+        let file = mesh_file(dir.path(), "disk.json", m);
+        let args = ["compare", "--size", "200x150", s(&file), "-o", s(&out)];
+        let run = capdiv(&args, None);
+        assert_eq!(run.code, Some(0), "{}", run.stderr);
+        if note {
+            assert_eq!(
+                run.stderr.trim(),
+                "note: panels 1 and 2 draw the same surface (caps: Catmull-Clark x1)"
+            );
+        } else {
+            assert!(run.stderr.is_empty(), "{}", run.stderr);
+        }
     }
 }
