@@ -23,6 +23,7 @@
 //!   map to pixels, fitted or framed on a focus;
 //! - [`focus`]: `--focus V`, the neighbourhood of a vertex's cap a zoomed
 //!   picture frames;
+//! - [`glyphs`]: text in pictures;
 //! - [`stripes`]: highlight lines set up relative to the view and
 //!   anti-aliased;
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
@@ -38,6 +39,7 @@ pub mod commands;
 pub mod error;
 pub mod export;
 pub mod focus;
+pub mod glyphs;
 pub mod input;
 pub mod mesh;
 pub mod obj;

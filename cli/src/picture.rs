@@ -25,7 +25,6 @@ pub use crate::camera::{Camera, Focus, Up};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
-use font8x8::UnicodeFonts;
 
 /// What is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -227,22 +226,8 @@ impl Picture {
     /// Text in the 8×8 font at `(x, y)` (top left), `size` pixels per font
     /// pixel.
     pub fn text(&mut self, x: usize, y: usize, s: &str, size: usize, c: [u8; 3]) {
-        for (i, ch) in s.chars().enumerate() {
-            let Some(glyph) = font8x8::BASIC_FONTS.get(ch) else {
-                continue;
-            };
-            for (row, bits) in glyph.iter().enumerate() {
-                for col in 0..8 {
-                    if bits & (1 << col) != 0 {
-                        for dy in 0..size {
-                            for dx in 0..size {
-                                self.put(x + (8 * i + col) * size + dx, y + row * size + dy, c);
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        let (w, h) = (self.width, self.height);
+        crate::glyphs::text(&mut self.rgb, w, h, (x, y), s, size, c);
     }
 }
 
