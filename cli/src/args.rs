@@ -168,6 +168,15 @@ pub enum UpArg {
     Y,
 }
 
+impl From<UpArg> for crate::camera::Up {
+    fn from(u: UpArg) -> Self {
+        match u {
+            UpArg::Z => crate::camera::Up::Z,
+            UpArg::Y => crate::camera::Up::Y,
+        }
+    }
+}
+
 /// Picture options shared by `render` and `compare`.
 #[derive(Clone, Debug, Args)]
 pub struct PictureArgs {
@@ -549,6 +558,9 @@ pub struct SurfaceArgs {
     /// Caps: the default pipeline, or Catmull-Clark caps everywhere.
     #[arg(long, value_enum, default_value_t = SurfaceScheme::Default)]
     pub scheme: SurfaceScheme,
+    /// PNG: the world axis pointing up in the picture.
+    #[arg(long, value_enum, default_value_t = UpArg::Z)]
+    pub up: UpArg,
     /// The boundary rule, overriding the file's [default: the file's, else
     /// edge-and-corner].
     #[arg(long, value_enum, value_name = "RULE")]

@@ -9,7 +9,7 @@
 //! where a patch is large enough on screen (more than [`MIN_LINE_PATCH`]
 //! pixels). Only for looking at results: no claim of accuracy.
 
-use crate::camera::Camera;
+use crate::camera::{Camera, Up};
 use crate::mesh::Mesh;
 use crate::Scalar;
 
@@ -20,10 +20,12 @@ pub struct View {
     pub width: usize,
     /// Image height in pixels.
     pub height: usize,
-    /// Direction to the camera around +z, degrees.
+    /// Direction to the camera around the up axis, degrees.
     pub azimuth: f64,
-    /// Height of the camera above the xy-plane, degrees.
+    /// Height of the camera above the plane normal to the up axis, degrees.
     pub elevation: f64,
+    /// The up axis ([`crate::camera::Camera::frame`]).
+    pub up: Up,
 }
 
 impl Default for View {
@@ -33,6 +35,7 @@ impl Default for View {
             height: 600,
             azimuth: -60.0,
             elevation: 50.0,
+            up: Up::Z,
         }
     }
 }
@@ -94,6 +97,7 @@ pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
     let frame = Camera {
         azimuth: view.azimuth,
         elevation: view.elevation,
+        up: view.up,
         ..Camera::default()
     }
     .frame();

@@ -303,10 +303,11 @@ fn one_set_of_defaults() {
     }
 }
 
-/// The drawn pixels' bounding box: width and height.
-fn drawn_box(png: &Png) -> (usize, usize) {
+/// The drawn pixels' bounding box in the first `rows` rows: width and
+/// height.
+fn drawn_box(png: &Png, rows: usize) -> (usize, usize) {
     let (mut x0, mut x1, mut y0, mut y1) = (usize::MAX, 0, usize::MAX, 0);
-    for y in 0..png.h {
+    for y in 0..rows.min(png.h) {
         for x in 0..png.w {
             if png.at(x, y) != BACKGROUND {
                 (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
@@ -319,7 +320,11 @@ fn drawn_box(png: &Png) -> (usize, usize) {
 /// `--up`: the tube turned to lie along `y` (13 units long, 2 across),
 /// seen level from `+x` (`--view 0,0`), stands upright with `--up y` (drawn
 /// box more than 3 times as tall as wide) and lies on its side with the
-/// default `--up z` (more than 3 times as wide as tall).
+/// default `--up z` (more than 3 times as wide as tall) in `render`'s
+/// pictures. `surface --format png` has the default view (`-60,50`): with
+/// `--up y` the tube stands (more than 3 times as tall as wide, above the
+/// legend's bottom 16 rows), with `--up z` its axis is along the screen's
+/// horizontal turned by 60° (less than 1.5 times as tall as wide).
 #[test]
 fn up_axis_turns_the_picture() {
     let dir = tempdir();
@@ -337,11 +342,24 @@ fn up_axis_turns_the_picture() {
         }
         args.extend_from_slice(&[s(&obj), "-o", s(&out)]);
         capdiv(&args, None).assert_ok();
-        let (w, h) = drawn_box(&read_png(&out));
+        let (w, h) = drawn_box(&read_png(&out), 300);
         if tall {
             assert!(h > 3 * w, "--up y: drawn {w}x{h}");
         } else {
             assert!(w > 3 * h, "--up z: drawn {w}x{h}");
+        }
+        let mut args = vec!["surface", "--quiet", "--format", "png"];
+        if let Some(u) = up {
+            args.extend_from_slice(&["--up", u]);
+        }
+        args.extend_from_slice(&[s(&obj), "-o", s(&out)]);
+        capdiv(&args, None).assert_ok();
+        let png = read_png(&out);
+        let (w, h) = drawn_box(&png, png.h - 16);
+        if tall {
+            assert!(h > 3 * w, "surface --up y: drawn {w}x{h}");
+        } else {
+            assert!(2 * h < 3 * w, "surface --up z: drawn {w}x{h}");
         }
     }
 }

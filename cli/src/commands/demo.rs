@@ -20,6 +20,7 @@ use super::patches::{collect, collect_eg, png_bytes};
 use super::pole::pole;
 use super::Outcome;
 use crate::args::DemoArgs;
+use crate::camera::Up;
 use crate::error::CliError;
 use crate::input::EgInput;
 use crate::output::{to_json, write_path, Sink};
@@ -129,7 +130,7 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let title = format!("capdiv demo: {name}, {}", sample.surface);
     let mesh = set.to_mesh(DEMO_GRID);
     let obj = set.to_obj(&mesh, DEMO_GRID, &title);
-    let png = png_bytes(&mesh)?;
+    let png = png_bytes(&mesh, Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -193,7 +194,7 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let title = format!("capdiv demo: {name}, {}", sample.surface);
     let mesh = set.to_mesh(DEMO_GRID);
     let obj = set.to_obj(&mesh, DEMO_GRID, &title);
-    let png = png_bytes(&mesh)?;
+    let png = png_bytes(&mesh, Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -273,7 +274,7 @@ fn one_mesh(
     let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None);
     let title = format!("capdiv demo: {name}, {what}");
     let obj = obj_text(&tess, &surface.summary, &title);
-    let png = png_bytes(&render_mesh(&tess.mesh))?;
+    let png = png_bytes(&render_mesh(&tess.mesh), Up::Z)?;
     let compute = start.elapsed();
     let obj_path = dir.join(format!("{name}.obj"));
     write_path(&obj_path, obj.as_bytes())?;

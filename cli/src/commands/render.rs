@@ -4,12 +4,12 @@
 //! [`crate::shape`]; the last hole is hatched.
 
 use super::Outcome;
-use crate::args::{PictureArgs, RenderArgs, Shade, UpArg};
+use crate::args::{PictureArgs, RenderArgs, Shade};
 use crate::error::{CliError, Naming};
 use crate::focus::focus;
 use crate::input::Input;
 use crate::output::Sink;
-use crate::picture::{draw, png, Camera, Focus, LightLines, Shading, Up};
+use crate::picture::{draw, png, Camera, Focus, LightLines, Shading};
 use crate::shape::{build, drawable, override_boundary, read_any, Shape};
 
 /// The picture options as the drawing's.
@@ -20,10 +20,7 @@ pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
         azimuth: p.view.0,
         elevation: p.view.1,
         grid: p.grid as usize,
-        up: match p.up {
-            UpArg::Z => Up::Z,
-            UpArg::Y => Up::Y,
-        },
+        up: p.up.into(),
         focus: None,
     };
     let shading = match p.shade {
