@@ -318,10 +318,12 @@ fn parse_light(s: &str) -> Result<[f64; 3], String> {
     for (c, t) in v.iter_mut().zip([x, y, z]) {
         *c = t.trim().parse().map_err(|_| bad())?;
     }
-    if v.iter().any(|c| !c.is_finite()) || v.iter().all(|&c| c == 0.0) {
+    let big = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if v.iter().any(|c| !c.is_finite()) || big == 0.0 {
         return Err(bad());
     }
-    Ok(v)
+    // Only the direction counts; scaled so its length is finite.
+    Ok(v.map(|c| c / big))
 }
 
 fn parse_size(s: &str) -> Result<(usize, usize), String> {

@@ -206,6 +206,9 @@ pub struct Picture {
     pub rgb: Vec<u8>,
     /// The colour scale `m` of a curvature map (`[−m, m]`), if any.
     pub scale: Option<f64>,
+    /// Per panel, how many supersamples show a patch (not the background
+    /// or the hatched hole).
+    pub patch_samples: Vec<usize>,
 }
 
 impl Picture {
@@ -215,6 +218,7 @@ impl Picture {
             height,
             rgb: BACKGROUND.repeat(width * height),
             scale: None,
+            patch_samples: Vec::new(),
         }
     }
     fn put(&mut self, x: usize, y: usize, c: [u8; 3]) {
@@ -330,6 +334,15 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     let width = n * cam.width + (n - 1) * gap;
     let mut pic = Picture::new(width, top + cam.height + bottom);
     pic.scale = scale;
+    pic.patch_samples = hits
+        .iter()
+        .map(|h| {
+            h.patch
+                .iter()
+                .filter(|&&p| p != NO_PATCH && p != HOLE)
+                .count()
+        })
+        .collect();
     for (panel, (hit, samples)) in hits.iter().zip(&samples).enumerate() {
         let stripes = stripes.get(panel);
         let x0 = panel * (cam.width + gap);

@@ -374,6 +374,7 @@ fn bad_picture_options_are_one_line_errors() {
         (vec!["--light", "0,0,0"], "X,Y,Z"),
         (vec!["--light", "1,2"], "X,Y,Z"),
         (vec!["--light", "1,nan,2"], "X,Y,Z"),
+        (vec!["--light", "1,inf,2"], "X,Y,Z"),
         (vec!["--lines", "0"], "light lines"),
         (vec!["--lines", "many"], "light lines"),
         (vec!["--up", "x"], "--up"),
@@ -647,4 +648,49 @@ fn compare_labels_panels_by_what_they_used() {
             assert!(run.stderr.is_empty(), "{}", run.stderr);
         }
     }
+}
+
+/// A `--focus` frame deeper than the rings reach shows only the hatched
+/// hole, and the command says so on stderr (and still writes the
+/// picture): the EG cap of `sample:eg-convex-n5` at depth 4 has a hole of
+/// about 0.55⁴ ≈ 0.09 of its 1-ring, wider than the 1/50 a zoom of 50
+/// frames; at depth 10 (0.55¹⁰ ≈ 0.003) rings are in view and there is
+/// no note.
+#[test]
+fn focus_beyond_the_rings_says_so() {
+    let dir = tempdir();
+    let out = dir.path().join("deep.png");
+    let run = capdiv(
+        &[
+            "render",
+            "--focus",
+            "0",
+            "--zoom",
+            "50",
+            "sample:eg-convex-n5",
+            "-o",
+            s(&out),
+        ],
+        None,
+    );
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert_eq!(
+        run.stderr.trim(),
+        "note: panel 1: at zoom 50 only the cap's hole is in view (depth 4): \
+         raise --depth or lower --zoom"
+    );
+    assert!(out.exists());
+    let args = [
+        "render",
+        "--focus",
+        "0",
+        "--zoom",
+        "50",
+        "--depth",
+        "10",
+        "sample:eg-convex-n5",
+        "-o",
+        s(&out),
+    ];
+    capdiv(&args, None).assert_ok();
 }

@@ -9,7 +9,7 @@
 //! EG does not apply), and with `--focus V` the cap at `V`. Panels that
 //! draw the same surface are named in a note on stderr.
 
-use super::render::{camera, framed, png_bytes};
+use super::render::{camera, framed, hole_only, png_bytes};
 use super::Outcome;
 use crate::args::CompareArgs;
 use crate::error::CliError;
@@ -46,7 +46,7 @@ pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
     let refs: Vec<&Shape> = shapes.iter().collect();
     let pic = draw(&refs, &cam, shading, true);
     let mut outcome = Outcome::new(png_bytes(&pic)?, Sink::File(args.picture.output.clone()));
-    outcome.report = report;
+    outcome.report = report + &hole_only(&pic, &args.picture);
     Ok(outcome)
 }
 

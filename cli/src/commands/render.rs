@@ -9,7 +9,7 @@ use crate::error::{CliError, Naming};
 use crate::focus::focus;
 use crate::input::Input;
 use crate::output::Sink;
-use crate::picture::{draw, png, Camera, Focus, LightLines, Shading};
+use crate::picture::{draw, png, Camera, Focus, LightLines, Picture, Shading};
 use crate::shape::{build, drawable, override_boundary, read_any, Shape};
 
 /// The picture options as the drawing's.
@@ -48,6 +48,27 @@ pub fn framed(
         .transpose()
 }
 
+/// A note for each panel (1-based) a `--focus` frame fills with the cap's
+/// hole alone, or nothing.
+pub fn hole_only(pic: &Picture, p: &PictureArgs) -> String {
+    if p.focus.is_none() {
+        return String::new();
+    }
+    let mut out = String::new();
+    for (k, &n) in pic.patch_samples.iter().enumerate() {
+        if n == 0 {
+            out += &format!(
+                "note: panel {}: at zoom {} only the cap's hole is in view (depth {}): \
+                 raise --depth or lower --zoom\n",
+                k + 1,
+                p.zoom,
+                p.depth
+            );
+        }
+    }
+    out
+}
+
 /// PNG bytes, or the encoder's error.
 pub fn png_bytes(pic: &crate::picture::Picture) -> Result<Vec<u8>, CliError> {
     png(pic).map_err(|e| CliError::Io {
@@ -66,8 +87,7 @@ pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
     let (mut cam, shading) = camera(&args.picture);
     cam.focus = framed(&name, &input, &naming, &shape, &args.picture)?;
     let pic = draw(&[&shape], &cam, shading, false);
-    Ok(Outcome::new(
-        png_bytes(&pic)?,
-        Sink::File(args.picture.output.clone()),
-    ))
+    let mut outcome = Outcome::new(png_bytes(&pic)?, Sink::File(args.picture.output.clone()));
+    outcome.report = hole_only(&pic, &args.picture);
+    Ok(outcome)
 }
