@@ -17,8 +17,9 @@
 //!    `|value|` over every panel, so `compare` panels share it). The
 //!    tessellation only decides which patch a pixel sees.
 //! 4. Hole pixels (the cap's unrefined centre) are hatched magenta/white;
-//!    curvature maps get a colour bar with its `−m`, `0`, `+m` values printed
-//!    (font: the `font8x8` crate).
+//!    curvature maps get a colour bar with its `−m`, `0`, `+m` values and
+//!    its sign convention ([`sign_convention`]) printed ([`crate::glyphs`]);
+//!    several panels get a label each (the shape's, clipped to the panel).
 
 use crate::camera::{dot, Fit, V3};
 pub use crate::camera::{Camera, Focus, Up};

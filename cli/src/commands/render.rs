@@ -1,7 +1,10 @@
 //! `capdiv render`: one input under one scheme as a PNG, shaded per pixel
 //! from the exact patches ([`crate::picture`]): plain, highlight lines, or
 //! Gaussian / mean curvature with a legend. Inputs and schemes as
-//! [`crate::shape`]; the last hole is hatched.
+//! [`crate::shape`]; the last hole is hatched. The whole surface is in
+//! view, or with `--focus V` the neighbourhood of vertex `V`'s cap
+//! ([`crate::focus`]); the camera is [`crate::camera`]'s, the highlight
+//! lines [`crate::stripes`]'.
 
 use super::Outcome;
 use crate::args::{PictureArgs, RenderArgs, Shade};
