@@ -152,14 +152,62 @@ pub enum Shade {
     Mean,
 }
 
+/// The default ring depth of `surface`, `render` and `compare`.
+pub const DEFAULT_DEPTH: u32 = 4;
+
+/// The default picture size of `render` and `compare` (per panel), and of
+/// `surface --format png`.
+pub const DEFAULT_SIZE: &str = "800x600";
+
+/// The world axis that points up in a picture.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum UpArg {
+    /// `+z` up (azimuth in the xy-plane from `+x` towards `+y`).
+    Z,
+    /// `+y` up (azimuth in the zx-plane from `+x` towards `−z`).
+    Y,
+}
+
+impl From<UpArg> for crate::camera::Up {
+    fn from(u: UpArg) -> Self {
+        match u {
+            UpArg::Z => crate::camera::Up::Z,
+            UpArg::Y => crate::camera::Up::Y,
+        }
+    }
+}
+
 /// Picture options shared by `render` and `compare`.
 #[derive(Clone, Debug, Args)]
 pub struct PictureArgs {
     /// Shading.
     #[arg(long, value_enum, default_value_t = Shade::Plain)]
     pub shade: Shade,
+    /// Highlight lines: light-line spacings across the picture's height
+    /// (a flat region facing the light shows this many stripes, whatever the
+    /// zoom; curved regions more).
+    #[arg(long, default_value_t = 10.0, value_name = "N", value_parser = parse_lines)]
+    pub lines: f64,
+    /// Highlight lines: direction from the surface to the light plane, `X,Y,Z`
+    /// [default: towards the camera].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_light, allow_hyphen_values = true)]
+    pub light: Option<[f64; 3]>,
+    /// Frame the neighbourhood of vertex V's cap, V numbered as the input
+    /// numbers it (OBJ: from 1; JSON mesh: from 0; polar net, c-net, d-net:
+    /// 0, the pole or centre).
+    #[arg(long, value_name = "V")]
+    pub focus: Option<usize>,
+    /// With --focus: magnification; at 1 the picture's shorter side spans
+    /// the vertex's 1-ring (twice its longest edge).
+    #[arg(long, default_value_t = crate::focus::DEFAULT_ZOOM, value_name = "Z",
+          value_parser = parse_zoom, requires = "focus")]
+    pub zoom: f64,
+    /// The world axis pointing up in the picture; `--view`'s azimuth turns
+    /// about it, its elevation rises towards it.
+    #[arg(long, value_enum, default_value_t = UpArg::Z)]
+    pub up: UpArg,
     /// Rings per cap (C²PS levels 0..M, EG/Catmull-Clark steps 1..M).
-    #[arg(long, default_value_t = 5, value_name = "M",
+    #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=12))]
     pub depth: u32,
     /// Camera: azimuth and elevation in degrees, `AZ,EL`.
@@ -167,7 +215,7 @@ pub struct PictureArgs {
           value_parser = parse_view, allow_hyphen_values = true)]
     pub view: (f64, f64),
     /// Image size in pixels (per panel for `compare`), `WxH`.
-    #[arg(long, default_value = "640x480", value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, default_value = DEFAULT_SIZE, value_name = "WxH", value_parser = parse_size)]
     pub size: (usize, usize),
     /// Tessellation segments per patch side (shading is per pixel anyway).
     #[arg(long, default_value_t = 6, value_name = "G",
@@ -241,8 +289,45 @@ fn parse_view(s: &str) -> Result<(f64, f64), String> {
     Ok((a, e))
 }
 
+fn parse_zoom(s: &str) -> Result<f64, String> {
+    let bad = || format!("'{s}' is not a magnification in 0.1..=100000 (e.g. 4)");
+    let z: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(0.1..=100000.0).contains(&z) {
+        return Err(bad());
+    }
+    Ok(z)
+}
+
+fn parse_lines(s: &str) -> Result<f64, String> {
+    let bad = || format!("'{s}' is not a number of light lines in 0.5..=2000 (e.g. 10)");
+    let n: f64 = s.trim().parse().map_err(|_| bad())?;
+    if !(0.5..=2000.0).contains(&n) {
+        return Err(bad());
+    }
+    Ok(n)
+}
+
+fn parse_light(s: &str) -> Result<[f64; 3], String> {
+    let bad =
+        || format!("'{s}' is not a direction X,Y,Z of finite numbers, not all 0 (e.g. 0,-1,1)");
+    let parts: Vec<&str> = s.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(bad());
+    };
+    let mut v = [0.0f64; 3];
+    for (c, t) in v.iter_mut().zip([x, y, z]) {
+        *c = t.trim().parse().map_err(|_| bad())?;
+    }
+    let big = v.iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    if v.iter().any(|c| !c.is_finite()) || big == 0.0 {
+        return Err(bad());
+    }
+    // Only the direction counts; scaled so its length is finite.
+    Ok(v.map(|c| c / big))
+}
+
 fn parse_size(s: &str) -> Result<(usize, usize), String> {
-    let bad = || format!("'{s}' is not WIDTHxHEIGHT with sides 64..=4096 (e.g. 640x480)");
+    let bad = || format!("'{s}' is not WIDTHxHEIGHT with sides 64..=4096 (e.g. 800x600)");
     let (w, h) = s.split_once('x').ok_or_else(bad)?;
     let w: usize = w.trim().parse().map_err(|_| bad())?;
     let h: usize = h.trim().parse().map_err(|_| bad())?;
@@ -453,7 +538,7 @@ pub struct PatchesArgs {
 #[derive(Clone, Debug, Args)]
 pub struct SurfaceArgs {
     /// Rings every cap emits (C²PS levels, EG and Catmull-Clark steps).
-    #[arg(long, default_value_t = 6, value_name = "M",
+    #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=16))]
     pub depth: u32,
     /// Output format: `json` — `{"patches", "caps", "summary"}` (every
@@ -475,6 +560,9 @@ pub struct SurfaceArgs {
     /// Caps: the default pipeline, or Catmull-Clark caps everywhere.
     #[arg(long, value_enum, default_value_t = SurfaceScheme::Default)]
     pub scheme: SurfaceScheme,
+    /// PNG: the world axis pointing up in the picture.
+    #[arg(long, value_enum, default_value_t = UpArg::Z)]
+    pub up: UpArg,
     /// The boundary rule, overriding the file's [default: the file's, else
     /// edge-and-corner].
     #[arg(long, value_enum, value_name = "RULE")]

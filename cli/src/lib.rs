@@ -19,6 +19,13 @@
 //! - [`render`]: the mesh as a shaded PNG preview;
 //! - [`picture`]: shapes shaded per pixel from the exact patches (highlight
 //!   lines, curvature maps with legends), one panel per scheme;
+//! - [`camera`]: the pictures' view (azimuth, elevation, up axis) and its
+//!   map to pixels, fitted or framed on a focus;
+//! - [`focus`]: `--focus V`, the neighbourhood of a vertex's cap a zoomed
+//!   picture frames;
+//! - [`glyphs`]: text in pictures;
+//! - [`stripes`]: highlight lines set up relative to the view and
+//!   anti-aliased;
 //! - [`samples`]: analytic sample configurations for `capdiv demo`;
 //! - [`shape`]: every input under every scheme as ring patches with levels
 //!   and hole edges (`render`, `compare`, `curvature`);
@@ -26,10 +33,13 @@
 //! - [`error`]: the one-line error type (every failure exits with status 2).
 
 pub mod args;
+pub mod camera;
 pub mod capacity;
 pub mod commands;
 pub mod error;
 pub mod export;
+pub mod focus;
+pub mod glyphs;
 pub mod input;
 pub mod mesh;
 pub mod obj;
@@ -38,6 +48,7 @@ pub mod picture;
 pub mod render;
 pub mod samples;
 pub mod shape;
+pub mod stripes;
 pub mod table;
 pub mod text;
 

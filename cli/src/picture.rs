@@ -4,51 +4,40 @@
 //! 1. Every patch is tessellated on a `grid × grid` parameter grid; each
 //!    vertex carries (patch index, `u`, `v`). Hole edges get a fan of
 //!    triangles to the cap's limit point, tagged as hole.
-//! 2. The triangles are rasterised (orthographic camera, z-buffer, 2×2
-//!    supersampling); a pixel keeps the patch index and the barycentric
-//!    interpolation of `(u, v)`.
+//! 2. The triangles are rasterised (orthographic camera of
+//!    [`crate::camera`], z-buffer, 2×2 supersampling); a pixel keeps the
+//!    patch index and the barycentric interpolation of `(u, v)`.
 //! 3. Each covered pixel evaluates its patch's jet at `(u, v)`
 //!    ([`capdiv_mesh::tessellate::PatchGeometry::jet`]): the exact normal
 //!    for Lambert shading and highlight lines
-//!    ([`capdiv_mesh::shade::HighlightLines`]), the exact `K`, `H` for the
+//!    ([`capdiv_mesh::shade::HighlightLines`], set up and anti-aliased by
+//!    [`crate::stripes`]), the exact `K`, `H` for the
 //!    colour maps ([`capdiv_mesh::shade::diverging`], scale
 //!    [`capdiv_mesh::shade::symmetric_scale`] of the 98th percentile of
 //!    `|value|` over every panel, so `compare` panels share it). The
 //!    tessellation only decides which patch a pixel sees.
 //! 4. Hole pixels (the cap's unrefined centre) are hatched magenta/white;
-//!    curvature maps get a colour bar with its `−m`, `0`, `+m` values printed
-//!    (font: the `font8x8` crate).
+//!    curvature maps get a colour bar with its `−m`, `0`, `+m` values and
+//!    its sign convention ([`sign_convention`]) printed ([`crate::glyphs`]);
+//!    several panels get a label each (the shape's, clipped to the panel).
 
+use crate::camera::{dot, Fit, V3};
+pub use crate::camera::{Camera, Focus, Up};
 use crate::shape::{geometry_at, Shape};
+pub use crate::stripes::LightLines;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
-use font8x8::UnicodeFonts;
 
 /// What is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Shading {
     /// Lambert, rings in alternating colours.
     Plain,
-    /// Highlight lines.
-    Highlight,
+    /// Highlight lines of this light.
+    Highlight(LightLines),
     /// Gaussian curvature map.
     Gauss,
     /// Mean curvature map.
     Mean,
-}
-
-/// Camera and size of one panel.
-#[derive(Clone, Copy, Debug)]
-pub struct Camera {
-    /// Panel width in pixels.
-    pub width: usize,
-    /// Panel height in pixels.
-    pub height: usize,
-    /// Azimuth of the direction to the camera, degrees.
-    pub azimuth: f64,
-    /// Elevation, degrees.
-    pub elevation: f64,
-    /// Tessellation segments per patch side.
-    pub grid: usize,
 }
 
 /// Background colour.
@@ -63,27 +52,6 @@ pub const LABEL_HEIGHT: usize = 20;
 const SS: usize = 2;
 const NO_PATCH: u32 = u32::MAX;
 const HOLE: u32 = u32::MAX - 1;
-
-type V3 = [f64; 3];
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn unit(a: V3) -> V3 {
-    let l = dot(a, a).sqrt();
-    if l > 0.0 && l.is_finite() {
-        a.map(|c| c / l)
-    } else {
-        [0.0, 0.0, 1.0]
-    }
-}
 
 /// A tessellation vertex: position, patch, parameters.
 #[derive(Clone, Copy, Debug)]
@@ -149,22 +117,6 @@ fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
     tris
 }
 
-/// The camera frame: `right`, `up`, `toward`.
-fn frame(cam: &Camera) -> (V3, V3, V3) {
-    let (az, el) = (cam.azimuth.to_radians(), cam.elevation.to_radians());
-    let toward = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
-    let right = {
-        let r = cross([0.0, 0.0, 1.0], toward);
-        if dot(r, r) < 1e-12 {
-            [1.0, 0.0, 0.0]
-        } else {
-            unit(r)
-        }
-    };
-    let up = cross(toward, right);
-    (right, up, toward)
-}
-
 /// What each supersample of a panel sees.
 struct Hits {
     w: usize,
@@ -173,36 +125,14 @@ struct Hits {
 }
 
 /// Rasterises the shapes' tessellations into panels sharing one fit (the
-/// union of their screen extents).
-fn rasterise(shapes: &[&Shape], cam: &Camera) -> Vec<Hits> {
-    let (right, up, toward) = frame(cam);
-    let (w, h) = (cam.width * SS, cam.height * SS);
+/// union of their screen extents, or the camera's focus).
+fn rasterise(shapes: &[&Shape], cam: &Camera) -> (Fit, Vec<Hits>) {
     let tris: Vec<Vec<[Vert; 3]>> = shapes.iter().map(|s| tessellate(s, cam.grid)).collect();
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for v in tris.iter().flatten().flatten() {
-        let s = [dot(v.p, right), dot(v.p, up)];
-        if s.iter().all(|c| c.is_finite()) {
-            for k in 0..2 {
-                lo[k] = lo[k].min(s[k]);
-                hi[k] = hi[k].max(s[k]);
-            }
-        }
-    }
-    let margin = 0.04 * w.min(h) as f64;
-    let span = [(hi[0] - lo[0]).max(1e-300), (hi[1] - lo[1]).max(1e-300)];
-    let scale = ((w as f64 - 2.0 * margin) / span[0]).min((h as f64 - 2.0 * margin) / span[1]);
-    let off = [
-        0.5 * (w as f64 - scale * span[0]),
-        0.5 * (h as f64 - scale * span[1]),
-    ];
-    let screen = |p: V3| {
-        [
-            off[0] + (dot(p, right) - lo[0]) * scale,
-            h as f64 - (off[1] + (dot(p, up) - lo[1]) * scale),
-            dot(p, toward),
-        ]
-    };
-    tris.iter()
+    let fit = Fit::new(cam, SS, tris.iter().flatten().flatten().map(|v| v.p));
+    let (w, h) = (fit.w, fit.h);
+    let screen = |p: V3| fit.screen(p);
+    let hits = tris
+        .iter()
         .map(|list| {
             let mut depth = vec![f64::NEG_INFINITY; w * h];
             let mut hits = Hits {
@@ -262,7 +192,8 @@ fn rasterise(shapes: &[&Shape], cam: &Camera) -> Vec<Hits> {
             }
             hits
         })
-        .collect()
+        .collect();
+    (fit, hits)
 }
 
 /// An RGB image, rows top to bottom.
@@ -276,6 +207,9 @@ pub struct Picture {
     pub rgb: Vec<u8>,
     /// The colour scale `m` of a curvature map (`[−m, m]`), if any.
     pub scale: Option<f64>,
+    /// Per panel, how many supersamples show a patch (not the background
+    /// or the hatched hole).
+    pub patch_samples: Vec<usize>,
 }
 
 impl Picture {
@@ -285,6 +219,7 @@ impl Picture {
             height,
             rgb: BACKGROUND.repeat(width * height),
             scale: None,
+            patch_samples: Vec::new(),
         }
     }
     fn put(&mut self, x: usize, y: usize, c: [u8; 3]) {
@@ -296,22 +231,8 @@ impl Picture {
     /// Text in the 8×8 font at `(x, y)` (top left), `size` pixels per font
     /// pixel.
     pub fn text(&mut self, x: usize, y: usize, s: &str, size: usize, c: [u8; 3]) {
-        for (i, ch) in s.chars().enumerate() {
-            let Some(glyph) = font8x8::BASIC_FONTS.get(ch) else {
-                continue;
-            };
-            for (row, bits) in glyph.iter().enumerate() {
-                for col in 0..8 {
-                    if bits & (1 << col) != 0 {
-                        for dy in 0..size {
-                            for dx in 0..size {
-                                self.put(x + (8 * i + col) * size + dx, y + row * size + dy, c);
-                            }
-                        }
-                    }
-                }
-            }
-        }
+        let (w, h) = (self.width, self.height);
+        crate::glyphs::text(&mut self.rgb, w, h, (x, y), s, size, c);
     }
 }
 
@@ -334,7 +255,7 @@ pub struct Sample {
 /// `(2·width) × (2·height)` entries, `None` for background, hole pixels and
 /// degenerate points — the numbers the pictures are made of.
 pub fn probe(shapes: &[&Shape], cam: &Camera) -> Vec<Vec<Option<Sample>>> {
-    samples_of(shapes, &rasterise(shapes, cam))
+    samples_of(shapes, &rasterise(shapes, cam).1)
 }
 
 fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Vec<Vec<Option<Sample>>> {
@@ -360,29 +281,23 @@ fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Vec<Vec<Option<Sample>>> {
         .collect()
 }
 
-/// The highlight lines a picture of these samples uses: about 10 lines
-/// across their bounding box ([`HighlightLines::for_box`]).
-pub fn highlight_lines(samples: &[Vec<Option<Sample>>]) -> Option<HighlightLines> {
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for s in samples.iter().flatten().flatten() {
-        for c in 0..3 {
-            lo[c] = lo[c].min(s.point[c]);
-            hi[c] = hi[c].max(s.point[c]);
-        }
-    }
-    HighlightLines::for_box(lo, hi, 10.0)
+/// The light lines a highlight picture of `shapes` seen by `cam` uses
+/// ([`crate::stripes::family`] of the panels' fit).
+pub fn highlight_lines(
+    shapes: &[&Shape],
+    cam: &Camera,
+    light: &LightLines,
+) -> Option<HighlightLines> {
+    crate::stripes::family(light, &rasterise(shapes, cam).0)
 }
 
 /// Draws `shapes` side by side, labelled when there are several (or
 /// `labels` is set), with one colour scale and one view.
 pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> Picture {
-    let hits = rasterise(shapes, cam);
-    let (right, up, toward) = frame(cam);
-    let light = unit([
-        toward[0] + 0.4 * right[0] + 0.6 * up[0],
-        toward[1] + 0.4 * right[1] + 0.6 * up[1],
-        toward[2] + 0.4 * right[2] + 0.6 * up[2],
-    ]);
+    let (fit, hits) = rasterise(shapes, cam);
+    let (right, up, toward) = (fit.frame.right, fit.frame.up, fit.frame.toward);
+    let light = crate::camera::unit([0, 1, 2].map(|k| toward[k] + 0.4 * right[k] + 0.6 * up[k]))
+        .unwrap_or(toward);
     let samples = samples_of(shapes, &hits);
     let value = |s: &Sample| match shading {
         Shading::Gauss => s.k,
@@ -392,7 +307,23 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
         let all: Vec<f64> = samples.iter().flatten().flatten().map(value).collect();
         symmetric_scale(&all, 0.98)
     });
-    let lines = highlight_lines(&samples);
+    // Per panel, each supersample's stripe intensity.
+    let stripes: Vec<Vec<f64>> = match shading {
+        Shading::Highlight(opts) => {
+            let lines = crate::stripes::family(&opts, &fit);
+            hits.iter()
+                .zip(&samples)
+                .map(|(hit, samples)| {
+                    let params: Vec<Option<f64>> = samples
+                        .iter()
+                        .map(|s| lines?.parameter(s.as_ref()?.point, s.as_ref()?.normal))
+                        .collect();
+                    crate::stripes::intensities(&params, hit.w, SS)
+                })
+                .collect()
+        }
+        _ => Vec::new(),
+    };
     let top = if labels || shapes.len() > 1 {
         LABEL_HEIGHT
     } else {
@@ -404,7 +335,17 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     let width = n * cam.width + (n - 1) * gap;
     let mut pic = Picture::new(width, top + cam.height + bottom);
     pic.scale = scale;
+    pic.patch_samples = hits
+        .iter()
+        .map(|h| {
+            h.patch
+                .iter()
+                .filter(|&&p| p != NO_PATCH && p != HOLE)
+                .count()
+        })
+        .collect();
     for (panel, (hit, samples)) in hits.iter().zip(&samples).enumerate() {
+        let stripes = stripes.get(panel);
         let x0 = panel * (cam.width + gap);
         for y in 0..cam.height {
             for x in 0..cam.width {
@@ -431,9 +372,8 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
                                         };
                                         base.map(|c| c * (0.25 + 0.75 * lambert))
                                     }
-                                    Shading::Highlight => {
-                                        let i = lines
-                                            .map_or(0.0, |l| l.intensity(s.point, s.normal, 0.12));
+                                    Shading::Highlight(_) => {
+                                        let i = stripes.map_or(0.0, |st| st[k]);
                                         let g = 120.0 + 125.0 * lambert;
                                         [g * (1.0 - i), g * (1.0 - i), g * (1.0 - 0.6 * i)]
                                     }
@@ -455,8 +395,10 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
             }
         }
         if top > 0 {
-            let label = shapes[panel].label;
-            pic.text(x0 + 6, 4, label, 1, [20, 20, 20]);
+            // Clipped to the panel.
+            let room = cam.width.saturating_sub(12) / 8;
+            let label: String = shapes[panel].label.chars().take(room).collect();
+            pic.text(x0 + 6, 4, &label, 1, [20, 20, 20]);
         }
     }
     if let Some(m) = scale {
@@ -465,7 +407,24 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     pic
 }
 
-/// The colour bar under a curvature map: `−m … 0 … +m` with the numbers.
+/// What the sign of a curvature map's value means, as its legend states it.
+/// The normal is the patches' `∂u × ∂v`, which points out of a closed mesh
+/// whose faces run counter-clockwise seen from outside; `H` is positive
+/// where the surface bends towards that normal, so an outward unit sphere
+/// has `H = −1` (and the paraboloid `z = (x² + y²)/2` with its normal up
+/// `H = +1`). `K`'s sign does not depend on the normal.
+pub fn sign_convention(shading: Shading) -> Option<&'static str> {
+    match shading {
+        Shading::Mean => {
+            Some("H > 0: bends towards the normal (du x dv). Outward unit sphere: H = -1")
+        }
+        Shading::Gauss => Some("K > 0: dome or bowl, K < 0: saddle (either normal)"),
+        _ => None,
+    }
+}
+
+/// The colour bar under a curvature map: `−m … 0 … +m` with the numbers,
+/// and the sign convention ([`sign_convention`]) below.
 fn legend(pic: &mut Picture, y0: usize, m: f64, shading: Shading) {
     let (x0, x1) = (16usize, pic.width.saturating_sub(16).max(17));
     let bar = 10;
@@ -490,6 +449,9 @@ fn legend(pic: &mut Picture, y0: usize, m: f64, shading: Shading) {
     pic.text(x1.saturating_sub(8 * hi.len()), ty, &hi, 1, ink);
     let title = format!("{name} (clamped beyond)");
     pic.text(mid + 24, ty, &title, 1, ink);
+    if let Some(rule) = sign_convention(shading) {
+        pic.text(x0, ty + 12, rule, 1, ink);
+    }
     // Tick marks at both ends and the middle.
     for x in [x0, mid, x1 - 1] {
         for y in y0 + 2..y0 + 6 {

@@ -3,10 +3,13 @@
 //! interpolated normals, 2×2 supersampling), encoded with the `png` crate.
 //!
 //! Quads are coloured by the level of their patch, alternating warm (even
-//! levels) and cool (odd levels), so the rings of the subdivision show; the
-//! back side is grey. Patch boundaries are drawn as thin dark lines where a
-//! patch is large enough on screen (more than [`MIN_LINE_PATCH`] pixels). Only for looking at results: no claim of accuracy.
+//! levels, [`EVEN`]) and cool (odd levels, [`ODD`]), so the rings of the
+//! subdivision show; the back side is grey. A legend in the bottom margin
+//! says so ([`RING_LEGEND`]). Patch boundaries are drawn as thin dark lines
+//! where a patch is large enough on screen (more than [`MIN_LINE_PATCH`]
+//! pixels). Only for looking at results: no claim of accuracy.
 
+use crate::camera::{Camera, Up};
 use crate::mesh::Mesh;
 use crate::Scalar;
 
@@ -17,10 +20,12 @@ pub struct View {
     pub width: usize,
     /// Image height in pixels.
     pub height: usize,
-    /// Direction to the camera around +z, degrees.
+    /// Direction to the camera around the up axis, degrees.
     pub azimuth: f64,
-    /// Height of the camera above the xy-plane, degrees.
+    /// Height of the camera above the plane normal to the up axis, degrees.
     pub elevation: f64,
+    /// The up axis ([`crate::camera::Camera::frame`]).
+    pub up: Up,
 }
 
 impl Default for View {
@@ -30,9 +35,22 @@ impl Default for View {
             height: 600,
             azimuth: -60.0,
             elevation: 50.0,
+            up: Up::Z,
         }
     }
 }
+
+/// Albedo of even ring levels.
+pub const EVEN: [u8; 3] = [235, 150, 90];
+/// Albedo of odd ring levels.
+pub const ODD: [u8; 3] = [95, 155, 215];
+/// The legend's texts after the [`EVEN`] and [`ODD`] swatches, and the
+/// last one.
+pub const RING_LEGEND: [&str; 3] = [
+    "even ring level",
+    "odd ring level",
+    "(a cap's rings alternate)  grey: back side",
+];
 
 /// An RGB image, 8 bits per channel, rows top to bottom.
 #[derive(Clone, Debug)]
@@ -75,11 +93,15 @@ fn unit(a: V3) -> Option<V3> {
 pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
     const SS: usize = 2;
     let (w, h) = (view.width.max(1) * SS, view.height.max(1) * SS);
-    let (az, el) = (view.azimuth.to_radians(), view.elevation.to_radians());
     // `toward`: from the scene to the camera; `right`, `up`: screen axes.
-    let toward = [el.cos() * az.cos(), el.cos() * az.sin(), el.sin()];
-    let right = unit(cross([0.0, 0.0, 1.0], toward)).unwrap_or([1.0, 0.0, 0.0]);
-    let up = cross(toward, right);
+    let frame = Camera {
+        azimuth: view.azimuth,
+        elevation: view.elevation,
+        up: view.up,
+        ..Camera::default()
+    }
+    .frame();
+    let (right, up, toward) = (frame.right, frame.up, frame.toward);
     let light = unit([
         toward[0] + 0.4 * right[0] + 0.6 * up[0],
         toward[1] + 0.4 * right[1] + 0.6 * up[1],
@@ -130,11 +152,7 @@ pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
     let mut depth = vec![f64::NEG_INFINITY; w * h];
     let mut color = vec![BACKGROUND.map(f64::from); w * h];
     for (q, &tag) in mesh.quads.iter().zip(&mesh.tags) {
-        let base = if tag % 2 == 0 {
-            [235.0, 150.0, 90.0]
-        } else {
-            [95.0, 155.0, 215.0]
-        };
+        let base = if tag % 2 == 0 { EVEN } else { ODD }.map(f64::from);
         for tri in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
             let face = unit(cross(
                 sub(pos[tri[1]], pos[tri[0]]),
@@ -250,11 +268,33 @@ pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
             rgb.extend(acc.map(|c| (c / (SS * SS) as f64).round().clamp(0.0, 255.0) as u8));
         }
     }
-    Image {
+    let mut image = Image {
         width: ow,
         height: oh,
         rgb,
+    };
+    ring_legend(&mut image);
+    image
+}
+
+/// The ring colours' legend along the bottom margin: a swatch and a text per
+/// colour, then [`RING_LEGEND`]'s last text.
+fn ring_legend(image: &mut Image) {
+    let (w, h) = (image.width, image.height);
+    let y = h.saturating_sub(14);
+    let ink = [60, 60, 60];
+    let mut x = 8;
+    for (colour, label) in [(EVEN, RING_LEGEND[0]), (ODD, RING_LEGEND[1])] {
+        for py in y..(y + 8).min(h) {
+            for px in x..(x + 12).min(w) {
+                let k = 3 * (py * w + px);
+                image.rgb[k..k + 3].copy_from_slice(&colour);
+            }
+        }
+        crate::glyphs::text(&mut image.rgb, w, h, (x + 16, y), label, 1, ink);
+        x += 16 + 8 * label.len() + 16;
     }
+    crate::glyphs::text(&mut image.rgb, w, h, (x, y), RING_LEGEND[2], 1, ink);
 }
 
 /// PNG bytes of an image.

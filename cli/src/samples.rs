@@ -95,7 +95,8 @@ pub fn demo_samples() -> Vec<Sample> {
                 gaussian: -1.0,
                 mean: 0.0,
             },
-            note: "cos 2t part of link 1 enters as p4 = 3 C2: limit is 1.5 z, K = 2.25 x sampled",
+            note: "expected: the cos 2t part of link 1 enters as p4 = 3 C2, so the limit \
+                   near the pole is 1.5 z and K = 2.25 x the sampled surface's",
         },
         Sample {
             name: "sphere-n48",

@@ -60,17 +60,33 @@ pub enum Limit {
     Undefined(&'static str),
 }
 
+/// One cap of a [`Shape`]: where it sits and what made it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeCap {
+    /// The input vertex at its centre (0-based; polar: 0 is the pole,
+    /// c-net and d-net: 0 is the centre), if it is at one.
+    pub vertex: Option<u32>,
+    /// The scheme as pictures name it (`C2PS`, `RTS`, `EG`,
+    /// `Catmull-Clark`).
+    pub scheme: &'static str,
+    /// Its limit point.
+    pub limit: [f64; 3],
+}
+
 /// A surface to draw or measure.
 #[derive(Clone, Debug)]
 pub struct Shape {
     /// The scheme's name (`c2ps`, `rts`, `eg`, `catmull-clark`, `mesh`).
     pub scheme: &'static str,
-    /// A label for pictures (`C²PS` is drawn as `C2PS`).
-    pub label: &'static str,
+    /// A label for pictures, naming what made the surface (`C²PS` is drawn
+    /// as `C2PS`): the scheme, or for a mesh its caps ([`caps_label`]).
+    pub label: String,
     /// The patches.
     pub patches: Vec<ShapePatch>,
     /// The limit curvature at the centre.
     pub limit: Limit,
+    /// Its caps.
+    pub caps: Vec<ShapeCap>,
 }
 
 /// Why EG has no limit value here.
@@ -136,9 +152,7 @@ pub fn build(
         (Input::Mesh(m), s) => {
             let mesh = m.to_mesh(name)?;
             let cc = s == ShapeScheme::CatmullClark;
-            let mut shape = mesh_shape(name, &mesh, depth, cc, None)?;
-            shape.label = if cc { "Catmull-Clark" } else { "C2PS / EG" };
-            shape
+            mesh_shape(name, &mesh, depth, cc, None)?
         }
     };
     let finite = shape.patches.iter().all(|p| match &p.geometry {
@@ -236,9 +250,14 @@ impl NetJob<f64> for PolarJob<'_> {
         };
         Ok(Shape {
             scheme: if self.rts { "rts" } else { "c2ps" },
-            label: if self.rts { "RTS" } else { "C2PS" },
+            label: if self.rts { "RTS" } else { "C2PS" }.into(),
             patches,
             limit,
+            caps: vec![ShapeCap {
+                vertex: Some(0),
+                scheme: if self.rts { "RTS" } else { "C2PS" },
+                limit: hole_point,
+            }],
         })
     }
 }
@@ -272,9 +291,14 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     }
     Ok(Shape {
         scheme: "eg",
-        label: "EG",
+        label: "EG".into(),
         patches,
         limit: Limit::Undefined(EG_NO_LIMIT),
+        caps: vec![ShapeCap {
+            vertex: Some(0),
+            scheme: "EG",
+            limit: hole_point,
+        }],
     })
 }
 
@@ -302,9 +326,14 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     }
     Ok(Shape {
         scheme: "catmull-clark",
-        label: "Catmull-Clark",
+        label: "Catmull-Clark".into(),
         patches,
         limit: Limit::Undefined(CC_NO_LIMIT),
+        caps: vec![ShapeCap {
+            vertex: Some(0),
+            scheme: "Catmull-Clark",
+            limit: hole_point,
+        }],
     })
 }
 
@@ -345,7 +374,7 @@ fn polar_cc(name: &str, input: &PolarInput, depth: u32) -> Result<Shape, CliErro
     let keep = n * 4;
     let mut shape = mesh_shape(name, &mesh, depth, true, Some(keep))?;
     shape.scheme = "catmull-clark";
-    shape.label = "Catmull-Clark";
+    shape.label = "Catmull-Clark".into();
     Ok(shape)
 }
 
@@ -412,10 +441,31 @@ fn mesh_shape(
         .map(|p| p.level)
         .min()
         .unwrap_or(0);
+    let kept = |p: &&PatchRecord<f64>| keep.is_none_or(|k| (p.face as usize) < k);
+    // The caps with a patch kept.
+    let caps: Vec<ShapeCap> = out
+        .caps
+        .iter()
+        .filter(|c| {
+            out.patches
+                .iter()
+                .filter(kept)
+                .any(|p| p.cap == Some(c.index))
+        })
+        .map(|c| ShapeCap {
+            vertex: c.vertex,
+            scheme: match c.scheme {
+                Scheme::C2ps => "C2PS",
+                Scheme::Eg => "EG",
+                Scheme::CatmullClark => "Catmull-Clark",
+            },
+            limit: c.limit.0,
+        })
+        .collect();
     let patches = out
         .patches
         .iter()
-        .filter(|p| keep.is_none_or(|k| (p.face as usize) < k))
+        .filter(kept)
         .map(|p| {
             let ring = p.cap.is_some_and(|c| followed.contains(&c));
             ShapePatch {
@@ -437,14 +487,28 @@ fn mesh_shape(
         } else {
             "mesh"
         },
-        label: if catmull_clark {
-            "Catmull-Clark"
-        } else {
-            "C2PS / EG"
-        },
+        label: caps_label(&caps),
         patches,
         limit,
+        caps,
     })
+}
+
+/// What a mesh surface's caps are, counted by scheme in the order met:
+/// `caps: C2PS x2, EG x8`, or `no caps (B-spline only)`.
+pub fn caps_label(caps: &[ShapeCap]) -> String {
+    let mut counts: Vec<(&str, usize)> = Vec::new();
+    for c in caps {
+        match counts.iter_mut().find(|e| e.0 == c.scheme) {
+            Some(e) => e.1 += 1,
+            None => counts.push((c.scheme, 1)),
+        }
+    }
+    if counts.is_empty() {
+        return "no caps (B-spline only)".into();
+    }
+    let list: Vec<String> = counts.iter().map(|(s, n)| format!("{s} x{n}")).collect();
+    format!("caps: {}", list.join(", "))
 }
 
 /// [`CliError::Usage`] when a shape has no patch to draw (e.g. a polar net

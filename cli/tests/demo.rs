@@ -83,6 +83,18 @@ fn demo_writes_its_files_and_summary() {
         assert_eq!((w, h), (800, 600));
         let drawn = rgb.chunks(3).filter(|p| p != &[246, 246, 246]).count();
         assert!(drawn > w * h / 5, "{name}: only {drawn} pixels drawn");
+        // The ring colours' legend in the bottom margin: both swatches
+        // (12×8 pixels of the unshaded even and odd colours) and its text.
+        let bottom = &rgb[3 * w * (h - 16)..];
+        for swatch in [[235, 150, 90], [95, 155, 215]] {
+            let n = bottom.chunks(3).filter(|p| p == &swatch).count();
+            assert!(n >= 96, "{name}: swatch {swatch:?}: {n} pixels");
+        }
+        let ink = bottom
+            .chunks(3)
+            .filter(|p| p.iter().all(|&c| c < 70))
+            .count();
+        assert!(ink > 300, "{name}: legend text: {ink} dark pixels");
         // JSON: a valid input of the other commands.
         let json = out.join(format!("{name}.json"));
         capdiv(&["pole", s(&json)], None).ok_json();
@@ -116,6 +128,23 @@ fn demo_writes_its_files_and_summary() {
             24 * n * 16
         );
     }
+    // The saddle's curvature line compares two surfaces and says so; its
+    // note says the difference is expected.
+    let saddle = &text[text.find("saddle: ").unwrap()..];
+    let saddle = &saddle[..saddle.find("\n\n").unwrap()];
+    assert!(
+        saddle.contains(
+            "Gaussian curvature  -2.250000 at the limit; the sampled surface has -1.000000, \
+             ratio 2.2500"
+        ),
+        "{saddle}"
+    );
+    assert!(
+        saddle.contains("note                expected: "),
+        "{saddle}"
+    );
+    assert!(text.contains("curvatures: the limit surface at the pole against the surface"));
+
     // The monkey saddle's c0 by (3): 1/6·3·(1/32) − 5/96·3·(1/32) = 11/1024.
     assert!(text.contains("[0.000000, 0.000000, 0.010742]"), "{text}");
 

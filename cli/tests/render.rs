@@ -6,7 +6,7 @@ mod common;
 
 use capdiv_cli::args::ShapeScheme;
 use capdiv_cli::input::Input;
-use capdiv_cli::picture::{highlight_lines, probe, Camera, HATCH, LEGEND_HEIGHT};
+use capdiv_cli::picture::{highlight_lines, probe, Camera, LightLines, HATCH, LEGEND_HEIGHT};
 use capdiv_cli::samples::{sample_cnet, sample_surface};
 use capdiv_cli::shape::build;
 use common::capdiv;
@@ -15,6 +15,7 @@ use common::capdiv;
 /// tessellation → per-pixel (u, v) → patch jet → normal → the lines'
 /// parameter): a plane has one normal, so the parameter must be an affine
 /// function of the surface point — stripes straight and evenly spaced.
+/// Lines from a light plane on the camera's right.
 /// Checked on a tilted planar polar net (C²PS and Catmull-Clark) and a tilted
 /// planar c-net (EG): (1) every pixel's normal equals the plane's to 1e-12;
 /// (2) the parameter, fitted by least squares as `a + b·x + c·y` over the
@@ -48,11 +49,19 @@ fn highlight_stripes_of_a_plane_are_straight_and_evenly_spaced() {
         azimuth: -60.0,
         elevation: 70.0,
         grid: 4,
+        ..Camera::default()
+    };
+    // The light plane on the camera's right: its lines run along the
+    // screen's vertical, so the stripes cross the middle row; 3 spacings
+    // across the height keep the stripes some 20 samples apart.
+    let light = LightLines {
+        direction: Some(cam.frame().right),
+        lines: 3.0,
     };
     for (input, scheme) in cases {
         let shape = build("plane", &input, Some(scheme), 3).unwrap();
         let samples = probe(&[&shape], &cam);
-        let lines = highlight_lines(&samples).unwrap();
+        let lines = highlight_lines(&[&shape], &cam, &light).unwrap();
         let px = &samples[0];
         let w = 2 * cam.width;
         let mut pts = Vec::new();

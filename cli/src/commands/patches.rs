@@ -34,6 +34,7 @@ use super::eg::{read_table, subdivision};
 use super::polar::Config;
 use super::Outcome;
 use crate::args::{FirstStepArg, PatchFormat, PatchesArgs, Precision};
+use crate::camera::Up;
 use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
@@ -180,13 +181,17 @@ fn format<R: Scalar, const K: usize>(
             let title = format!("capdiv patches --depth {} {name}", args.depth);
             set.to_obj(&set.to_mesh(grid), grid, &title).into_bytes()
         }
-        PatchFormat::Png => png_bytes(&set.to_mesh(grid))?,
+        PatchFormat::Png => png_bytes(&set.to_mesh(grid), Up::Z)?,
     })
 }
 
-/// The default view of a mesh as PNG bytes.
-pub fn png_bytes<R: Scalar>(mesh: &Mesh<R>) -> Result<Vec<u8>, CliError> {
-    encode_png(&render(mesh, &View::default())).map_err(|e| CliError::Io {
+/// The default view of a mesh, `up` pointing up, as PNG bytes.
+pub fn png_bytes<R: Scalar>(mesh: &Mesh<R>, up: Up) -> Result<Vec<u8>, CliError> {
+    let view = View {
+        up,
+        ..View::default()
+    };
+    encode_png(&render(mesh, &view)).map_err(|e| CliError::Io {
         path: "<png encoder>".into(),
         message: e.to_string(),
     })

@@ -1,14 +1,19 @@
 //! `capdiv render`: one input under one scheme as a PNG, shaded per pixel
 //! from the exact patches ([`crate::picture`]): plain, highlight lines, or
 //! Gaussian / mean curvature with a legend. Inputs and schemes as
-//! [`crate::shape`]; the last hole is hatched.
+//! [`crate::shape`]; the last hole is hatched. The whole surface is in
+//! view, or with `--focus V` the neighbourhood of vertex `V`'s cap
+//! ([`crate::focus`]); the camera is [`crate::camera`]'s, the highlight
+//! lines [`crate::stripes`]'.
 
 use super::Outcome;
 use crate::args::{PictureArgs, RenderArgs, Shade};
-use crate::error::CliError;
+use crate::error::{CliError, Naming};
+use crate::focus::focus;
+use crate::input::Input;
 use crate::output::Sink;
-use crate::picture::{draw, png, Camera, Shading};
-use crate::shape::{build, drawable, override_boundary, read_any};
+use crate::picture::{draw, png, Camera, Focus, LightLines, Picture, Shading};
+use crate::shape::{build, drawable, override_boundary, read_any, Shape};
 
 /// The picture options as the drawing's.
 pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
@@ -18,14 +23,53 @@ pub fn camera(p: &PictureArgs) -> (Camera, Shading) {
         azimuth: p.view.0,
         elevation: p.view.1,
         grid: p.grid as usize,
+        up: p.up.into(),
+        focus: None,
     };
     let shading = match p.shade {
         Shade::Plain => Shading::Plain,
-        Shade::Highlight => Shading::Highlight,
+        Shade::Highlight => Shading::Highlight(LightLines {
+            direction: p.light,
+            lines: p.lines,
+        }),
         Shade::Gauss => Shading::Gauss,
         Shade::Mean => Shading::Mean,
     };
     (cam, shading)
+}
+
+/// The region `--focus` frames (its vertex looked up in `shape`), if asked.
+pub fn framed(
+    name: &str,
+    input: &Input,
+    naming: &Naming,
+    shape: &Shape,
+    p: &PictureArgs,
+) -> Result<Option<Focus>, CliError> {
+    p.focus
+        .map(|v| focus(name, input, naming, shape, v, p.zoom))
+        .transpose()
+}
+
+/// A note for each panel (1-based) a `--focus` frame fills with the cap's
+/// hole alone, or nothing.
+pub fn hole_only(pic: &Picture, p: &PictureArgs) -> String {
+    if p.focus.is_none() {
+        return String::new();
+    }
+    let mut out = String::new();
+    for (k, &n) in pic.patch_samples.iter().enumerate() {
+        if n == 0 {
+            out += &format!(
+                "note: panel {}: at zoom {} only the cap's hole is in view (depth {}): \
+                 raise --depth or lower --zoom\n",
+                k + 1,
+                p.zoom,
+                p.depth
+            );
+        }
+    }
+    out
 }
 
 /// PNG bytes, or the encoder's error.
@@ -43,10 +87,10 @@ pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
     let shape =
         build(&name, &input, args.scheme, args.picture.depth).map_err(|e| e.named(&naming))?;
     drawable(&name, &shape, args.picture.depth)?;
-    let (cam, shading) = camera(&args.picture);
+    let (mut cam, shading) = camera(&args.picture);
+    cam.focus = framed(&name, &input, &naming, &shape, &args.picture)?;
     let pic = draw(&[&shape], &cam, shading, false);
-    Ok(Outcome::new(
-        png_bytes(&pic)?,
-        Sink::File(args.picture.output.clone()),
-    ))
+    let mut outcome = Outcome::new(png_bytes(&pic)?, Sink::File(args.picture.output.clone()));
+    outcome.report = hole_only(&pic, &args.picture);
+    Ok(outcome)
 }

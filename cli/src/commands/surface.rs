@@ -199,7 +199,9 @@ fn produce<R: Scalar>(
                     );
                     obj_text(&tess, &surface.summary, &title).into_bytes()
                 }
-                SurfaceFormat::Png => super::patches::png_bytes(&render_mesh(&tess.mesh))?,
+                SurfaceFormat::Png => {
+                    super::patches::png_bytes(&render_mesh(&tess.mesh), args.up.into())?
+                }
                 _ => {
                     let groups = gltf::groups(&tess.mesh.tags, objects);
                     let doc = gltf::document(&tess.mesh, &groups);
