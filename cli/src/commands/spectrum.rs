@@ -133,7 +133,7 @@ pub fn matrix(n: usize, rule: Option<&RuleTable<'_>>) -> Result<DMatrix<f64>, ca
 const SCHUR_EPS: [f64; 3] = [f64::EPSILON, 1e-14, 1e-12];
 
 /// All eigenvalues as `[re, im]`, by modulus, largest first; `None` if the
-/// Schur iteration converges for none of [`SCHUR_EPS`].
+/// Schur iteration converges for none of the thresholds `SCHUR_EPS`.
 pub fn eigenvalues(m: DMatrix<f64>) -> Option<Vec<[f64; 2]>> {
     let schur = SCHUR_EPS
         .iter()
