@@ -213,10 +213,10 @@ fn demo_meshes_are_closed_surfaces() {
         saved.as_object_mut().unwrap().remove("times_ms");
         assert_eq!(fresh["summary"], saved, "{name}");
     }
-    // Neither cube takes a whole-mesh step: the plain cube's six faces are
-    // refined (each next to four valence-3 points) and its EG caps are one
-    // level in, their rings from level 2; the rounded cube's caps are on
-    // its own faces.
+    // The plain cube's six faces all need refinement (each next to four
+    // valence-3 points): one whole-mesh step refines them at once, and its
+    // EG caps are one level in, their rings from level 2; the rounded
+    // cube's caps are on its own faces.
     let summary = |n: &str| -> serde_json::Value {
         serde_json::from_slice(&std::fs::read(out.join(format!("{n}.summary.json"))).unwrap())
             .unwrap()
@@ -229,7 +229,7 @@ fn demo_meshes_are_closed_surfaces() {
             .map(|x| x.as_u64().unwrap())
             .collect()
     };
-    assert_eq!(summary("cube")["refinement_steps"], 0);
+    assert_eq!(summary("cube")["refinement_steps"], 1);
     assert_eq!(
         summary("cube")["needed_refinement"]
             .as_array()

@@ -267,8 +267,9 @@ fn json_patches_equal_the_library() {
 #[test]
 fn summary_reports_refinement_caps_and_reasons() {
     let dir = tempdir();
-    // The plain cube: every face next to four valence-3 points, refined
-    // adaptively (no whole-mesh step); the caps one level in.
+    // The plain cube: every face next to four valence-3 points, so one
+    // whole-mesh step (it refines no face that does not need it); the caps
+    // one level in.
     let path = write(
         dir.path(),
         "cube.obj",
@@ -276,7 +277,7 @@ fn summary_reports_refinement_caps_and_reasons() {
     );
     let out = surface(&["--depth", "1"], s(&path), None);
     let sum = &out["summary"];
-    assert_eq!(sum["refinement_steps"], 0);
+    assert_eq!(sum["refinement_steps"], 1);
     assert_eq!(sum["fallbacks"], json!([]));
     let needed = sum["needed_refinement"].as_array().unwrap();
     assert_eq!(needed.len(), 6);
@@ -290,15 +291,15 @@ fn summary_reports_refinement_caps_and_reasons() {
         sum["caps"],
         json!([{"scheme": "eg", "valence": 3, "count": 8}])
     );
-    // The triangle-and-pentagon prism: caps at face centres (two levels
-    // in) name their face.
+    // The triangle-and-pentagon prism (no face a quad: one whole-mesh step,
+    // then adaptive): caps at face centres (two levels in) name their face.
     let path = write(
         dir.path(),
         "tp.obj",
         &obj_text(&samples::triangle_and_pentagon_mesh(), Corners::Plain),
     );
     let out = surface(&["--depth", "1"], s(&path), None);
-    assert_eq!(out["summary"]["refinement_steps"], 0);
+    assert_eq!(out["summary"]["refinement_steps"], 1);
     assert!(out["caps"]
         .as_array()
         .unwrap()

@@ -16,11 +16,12 @@
 //!    regular: its c-net exists, docs/math/eg.md §1) is an EG cap for n = 3, 5 and
 //!    for n = 6..10 with a rule table, else a Catmull-Clark cap, over its n
 //!    faces;
-//! 4. in a mesh without tags, when a polar fan's C²PS configuration is
-//!    incomplete (links 1 and 2 are there, link 3 or the rings' regularity
-//!    is not) and one step completes it, the whole mesh is refined once
-//!    (Catmull-Clark, C²PS at poles) and analysed again — at most
-//!    [`MAX_STEPS`] times;
+//! 4. in a mesh without tags, where a step refines no face that does not
+//!    need it — every face needs refinement, or a polar fan's C²PS
+//!    configuration is incomplete (links 1 and 2 are there, link 3 or the
+//!    rings' regularity is not) and one step completes it — the whole mesh
+//!    is refined once (Catmull-Clark, C²PS at poles) and analysed again — at
+//!    most [`MAX_STEPS`] times;
 //! 5. every face left is refined adaptively with OpenSubdiv's rules
 //!    ([`crate::adaptive`]): nothing is left uncovered. Where that
 //!    refinement separates an extraordinary point from every other feature
@@ -310,16 +311,23 @@ impl<'t> SurfacePlan<'t> {
             },
         };
         // Whole-mesh steps only for meshes without tags (the step has no
-        // creasing rules), and only for a polar fan whose C²PS
-        // configuration a step completes (the step refines poles by
-        // C²PS); everything else is refined adaptively, EG caps included.
+        // creasing rules), and only where they refine no face that does not
+        // need it: for a polar fan whose C²PS configuration a step
+        // completes (the step refines poles by C²PS), or when every face
+        // needs refinement (a triangle mesh; the step is the adaptive
+        // refinement's first level, made at once). Everything else is
+        // refined adaptively, caps included.
         while let Some(t) = level_topo.as_ref().filter(|_| tagged.is_none()) {
             let polar_pending = !options.catmull_clark
                 && pass.fallbacks.iter().any(|&(v, r)| {
                     r == Reason::PolarIncomplete && polar_config(t, v as usize, None, false).is_ok()
                 });
+            let every_face = pass
+                .uncovered
+                .iter()
+                .all(|r| r.is_some_and(Reason::refinement_helps));
             if (steps.len() as u32) >= MAX_STEPS
-                || !polar_pending
+                || !(polar_pending || every_face)
                 || !pass
                     .uncovered
                     .iter()

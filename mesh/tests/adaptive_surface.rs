@@ -492,3 +492,65 @@ fn refinement_stays_local_and_caps_come_one_level_in() {
         is_closed_and_oriented(&tess(&c).faces).expect("closed and oriented");
     }
 }
+
+/// When every face of a mesh needs refinement, the whole-mesh step is the
+/// adaptive refinement's first level made at once: the plan with the step
+/// and the same mesh through the adaptive path alone (a boundary rule on a
+/// closed mesh changes no rule, but is a tag, and tagged meshes take no
+/// step) give the same patches — kind, level, face, domain, and control
+/// points within 1e-12 of the mesh size (the two paths sum the same
+/// stencils in another order).
+#[test]
+fn a_whole_mesh_step_is_the_adaptive_first_level_made_at_once() {
+    for (name, m) in [
+        ("cube", samples::cube()),
+        (
+            "triangle_and_pentagon",
+            samples::triangle_and_pentagon_mesh(),
+        ),
+    ] {
+        let mut tagged = m.clone();
+        tagged.tags.boundary = capdiv_mesh::BoundaryInterpolation::EdgeOnly;
+        let (plan_step, step) = plan_and_evaluate(&m, 3, false);
+        let (plan_adaptive, adaptive) = plan_and_evaluate(&tagged, 3, false);
+        assert!(!plan_step.steps.is_empty(), "{name}: no step");
+        assert!(plan_adaptive.steps.is_empty(), "{name}: a step");
+        let key = |p: &capdiv_mesh::PatchRecord<f64>| {
+            (
+                p.face,
+                p.corner,
+                p.level,
+                p.domain.map(|x| (x * 65536.0).round() as i64),
+            )
+        };
+        fn sorted<K: Ord>(
+            c: &Collect<f64>,
+            key: impl Fn(&capdiv_mesh::PatchRecord<f64>) -> K,
+        ) -> Vec<&capdiv_mesh::PatchRecord<f64>> {
+            let mut v: Vec<&capdiv_mesh::PatchRecord<f64>> = c.patches.iter().collect();
+            v.sort_by_key(|p| key(p));
+            v
+        }
+        let (a, b) = (sorted(&step, key), sorted(&adaptive, key));
+        assert_eq!(a.len(), b.len(), "{name}: patch counts");
+        let size = (0..3)
+            .map(|k| {
+                let (lo, hi) = m.vertices.iter().fold((f64::MAX, f64::MIN), |(lo, hi), p| {
+                    (lo.min(p[k]), hi.max(p[k]))
+                });
+                hi - lo
+            })
+            .fold(0.0, f64::max);
+        let mut worst = 0.0f64;
+        for (p, q) in a.iter().zip(&b) {
+            assert_eq!((key(p), p.kind), (key(q), q.kind), "{name}");
+            let (gp, gq) = (
+                common::control_grid(&p.geometry),
+                common::control_grid(&q.geometry),
+            );
+            worst = worst.max(common::grid_distance(&gp, &gq) / size);
+        }
+        println!("{name}: {} patches, worst {worst:.1e}", a.len());
+        assert!(worst <= 1e-12, "{name}: {worst:e}");
+    }
+}

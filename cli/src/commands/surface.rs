@@ -523,8 +523,9 @@ pub struct Summary {
     pub patches: PatchCounts,
     /// Caps per scheme and valence.
     pub caps: Vec<CapCount>,
-    /// Whole-mesh refinement steps taken (0..=2; only for a polar fan whose
-    /// C²PS configuration a step completes).
+    /// Whole-mesh refinement steps taken (0..=2; only when every face needs
+    /// refinement, or for a polar fan whose C²PS configuration a step
+    /// completes).
     pub refinement_steps: usize,
     /// Input faces that needed refinement: those that made the first
     /// whole-mesh step necessary, else those refined adaptively.

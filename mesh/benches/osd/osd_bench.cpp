@@ -129,6 +129,9 @@ Mesh readJob(const char *path) {
     std::string creasing = keyword(in, "creasing");
     m.sdc.SetCreasingMethod(creasing == "chaikin" ? Sdc::Options::CREASE_CHAIKIN
                                                   : Sdc::Options::CREASE_UNIFORM);
+    std::string triangles = keyword(in, "triangles");
+    m.sdc.SetTriangleSubdivision(triangles == "smooth" ? Sdc::Options::TRI_SUB_SMOOTH
+                                                       : Sdc::Options::TRI_SUB_CATMARK);
     m.isolation = std::atoi(keyword(in, "isolation").c_str());
     if (m.isolation < 1 || m.isolation > 10) fail("isolation");
     return m;
