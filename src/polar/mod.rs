@@ -6,6 +6,7 @@
 //! and read out as a [`PoleJet`] (§4) or as bicubic ring patches (§5).
 
 pub mod buf;
+mod column;
 mod fourier;
 pub(crate) mod index;
 pub mod jet;

@@ -8,6 +8,7 @@
 //! wrap-around entry `n−1`, read again at `j = 0`, is saved beforehand). No
 //! second copy of the net; stack use is a fixed number of points.
 
+use super::column::{column, refine_even, refine_odd};
 use super::fourier::Fourier;
 use super::index::{add_mod, at, next_mod, put};
 use super::net::{held_after_step, FirstStep, PolarNet};
@@ -105,9 +106,7 @@ pub(crate) fn step_fits<R: Real>(
 /// Uniform cubic periodic refinement of `u` at old index `j`: `(ũ[2j], ũ[2j+1])`.
 #[inline]
 fn refine<R: Real>(prev: Point3<R>, cur: Point3<R>, next: Point3<R>) -> (Point3<R>, Point3<R>) {
-    let even = (prev + cur * R::from_f64(6.0) + next) * R::ratio(1, 8);
-    let odd = (cur + next) * R::ratio(1, 2);
-    (even, odd)
+    (refine_even(prev, cur, next), refine_odd(cur, next))
 }
 
 /// The step over plain slices (compiled once per scalar type, shared by
@@ -142,12 +141,6 @@ pub(crate) fn c2ps_in_place<R: Real>(
         at(l2, jl, z),
         if has3 { at(l3, jl, z) } else { z },
     ];
-    let w11_12 = R::ratio(11, 12);
-    let w1_12 = R::ratio(1, 12);
-    let w1_6 = R::ratio(1, 6);
-    let half = R::ratio(1, 2);
-    let six = R::from_f64(6.0);
-    let eighth = R::ratio(1, 8);
     let write45 = has3 && new_held >= 5 && l4.len() >= n2 && l5.len() >= n2;
     let no_root = [R::ZERO; 2];
 
@@ -171,18 +164,15 @@ pub(crate) fn c2ps_in_place<R: Real>(
             let h1 = f.h1(at(roots, jj, no_root));
             // (2·jj) mod 2n, for jj < 2n.
             let h2 = f.h2(at(roots, add_mod(jj, jj, n2), no_root));
+            let [q1, q2, q3, q4, q5] =
+                column([t1, t2, t3], q00, f.a, [h1, h2], uniform_first, write45);
             if write45 {
-                put(l5, jj, (t2 + t3) * half);
-                put(l4, jj, (t1 + t2 * six + t3) * eighth);
+                put(l5, jj, q5);
+                put(l4, jj, q4);
             }
-            put(l3, jj, (t1 + t2) * half);
-            let q2 = if uniform_first {
-                (q00 + t1 * six + t2) * eighth
-            } else {
-                t1 * w11_12 + t2 * w1_12 - h1 * w1_6
-            };
+            put(l3, jj, q3);
             put(l2, jj, q2);
-            put(l1, jj, (q00 + f.a) * half + h1 + h2 * half);
+            put(l1, jj, q1);
         }
     }
     *pole = q00 * R::ratio(3, 4) + f.a * R::ratio(1, 4);

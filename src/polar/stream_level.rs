@@ -16,6 +16,7 @@
 //! `C1, S1 ← ½·(C1, S1)`, `C2, S2 ← ¼·(C2, S2)`, `q00 ← ¾ q00 + ¼ A`
 //! (Lemma 5 scaling, exact for the valences `N ≥ 6` of levels ≥ 1).
 
+use super::column::{column, refine_even, refine_odd};
 use crate::point::Point3;
 use crate::real::Real;
 
@@ -171,36 +172,20 @@ pub(crate) fn next_column<R: Real>(
 ) -> Column<R> {
     let base = i / 2;
     let (prev, cur, next) = (lo.col(base), lo.col(base + 1), lo.col(base + 2));
-    let six = R::from_f64(6.0);
-    let eighth = R::ratio(1, 8);
-    let half = R::ratio(1, 2);
     let even = i.is_multiple_of(2);
     // Periodic refinement of old links 1..3 (§2), `ũ[2j]` or `ũ[2j+1]`.
-    let mut t = [Point3::ZERO; 3];
-    for (k, tk) in t.iter_mut().enumerate() {
-        *tk = if even {
-            (prev.q[k] + cur.q[k] * six + next.q[k]) * eighth
+    let t: [Point3<R>; 3] = core::array::from_fn(|k| {
+        if even {
+            refine_even(prev.q[k], cur.q[k], next.q[k])
         } else {
-            (cur.q[k] + next.q[k]) * half
-        };
-    }
-    let [t1, t2, t3] = t;
+            refine_odd(cur.q[k], next.q[k])
+        }
+    });
     let r = if even { cur.r } else { rotate(cur.r, hi.w) };
     let f = &lo.sums;
-    let h1 = f.h1(r);
-    let h2 = f.h2(double(r));
-    let mut q = [Point3::ZERO; 5];
-    q[0] = (f.pole + f.a) * half + h1 + h2 * half;
-    q[1] = if uniform_first {
-        (f.pole + t1 * six + t2) * eighth
-    } else {
-        t1 * R::ratio(11, 12) + t2 * R::ratio(1, 12) - h1 * R::ratio(1, 6)
-    };
-    q[2] = (t1 + t2) * half;
-    if lo.held >= 3 && hi.held >= 5 {
-        q[3] = (t1 + t2 * six + t3) * eighth;
-        q[4] = (t2 + t3) * half;
-    }
+    let h = [f.h1(r), f.h2(double(r))];
+    let outer = lo.held >= 3 && hi.held >= 5;
+    let q = column(t, f.pole, f.a, h, uniform_first, outer);
     Column { q, r }
 }
 
