@@ -554,3 +554,35 @@ fn a_whole_mesh_step_is_the_adaptive_first_level_made_at_once() {
         assert!(worst <= 1e-12, "{name}: {worst:e}");
     }
 }
+
+/// Caps that the adaptive refinement makes join their surroundings as the
+/// fast path's do: the hand's sixteen valence-5 junctions get EG caps,
+/// most of them one level in, next to refined faces that meet the hand's level-0 patches
+/// and C²PS caps; at every shared patch edge sample the unit normals agree
+/// to 1e-9 and H, K to 1e-6 of the local curvature scale (the tolerances
+/// of `surface_smooth.rs`: EG rings are C² with each other and with the
+/// bicubic surround, docs/math/eg.md §9, and the surround is one C²
+/// Catmull-Clark limit surface across its level transitions).
+#[test]
+fn adaptive_caps_join_their_surroundings_c2() {
+    let hand = samples::hand();
+    let (plan, c) = plan_and_evaluate(&hand, 3, false);
+    assert!(plan.steps.is_empty());
+    let eg_levels: Vec<u32> = plan
+        .ev
+        .iter()
+        .filter(|e| e.scheme == Scheme::Eg)
+        .map(|e| e.level)
+        .collect();
+    println!("hand: EG caps at levels {eg_levels:?}");
+    assert_eq!(eg_levels.len(), 16);
+    assert!(eg_levels.iter().filter(|&&l| l >= 1).count() >= 8);
+    let levels: std::collections::BTreeSet<u32> = c.patches.iter().map(|p| p.level).collect();
+    assert!(levels.contains(&0) && levels.contains(&1), "{levels:?}");
+    let (pairs, wn, wh, wk) = common::closed_and_smooth("hand", &c.patches);
+    assert!(pairs > 0);
+    assert!(
+        wn <= 1e-9 && wh <= 1e-6 && wk <= 1e-6,
+        "normal {wn:e}, H {wh:e}, K {wk:e}"
+    );
+}
