@@ -155,6 +155,11 @@ pub enum Shade {
 /// The default ring depth of `surface`, `render` and `compare`.
 pub const DEFAULT_DEPTH: u32 = 4;
 
+/// The default `--max-patches` of `surface` (also the limit of `render` and
+/// `compare`): all patches are held in memory, a few KB each, so two
+/// million is several GB.
+pub const DEFAULT_MAX_PATCHES: u64 = 2_000_000;
+
 /// The default picture size of `render` and `compare` (per panel), and of
 /// `surface --format png`.
 pub const DEFAULT_SIZE: &str = "800x600";
@@ -571,6 +576,11 @@ pub struct SurfaceArgs {
     /// repeatable. Valences without a table get Catmull-Clark caps.
     #[arg(long = "eg-table", value_name = "N=FILE")]
     pub eg_table: Vec<String>,
+    /// Refuse, after the analysis and before making any patch, a surface
+    /// of more patches than this (the count is exact: see the summary's
+    /// `patches`).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PATCHES)]
+    pub max_patches: u64,
     /// Do not print the summary on stderr.
     #[arg(long)]
     pub quiet: bool,

@@ -87,6 +87,16 @@ pub enum CliError {
         /// The input's name.
         source: String,
     },
+    /// The surface would have more patches than allowed (`--max-patches`):
+    /// refused after the analysis, before any patch is made.
+    TooLarge {
+        /// The input's name.
+        source: String,
+        /// Patches the surface would have.
+        patches: u64,
+        /// The limit.
+        max: u64,
+    },
 }
 
 /// How messages name a mesh's vertices and faces: as the input file counts
@@ -213,6 +223,14 @@ impl fmt::Display for CliError {
             CliError::EmptySurface { source } => write!(
                 f,
                 "{source}: the surface is empty (every face is a hole, or the boundary rule 'none' removed them all)"
+            ),
+            CliError::TooLarge {
+                source,
+                patches,
+                max,
+            } => write!(
+                f,
+                "{source}: the surface would have {patches} patches, more than --max-patches {max} (lower --depth, or raise --max-patches)"
             ),
         }
     }

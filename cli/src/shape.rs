@@ -18,10 +18,11 @@
 //! `u = 0`; EG/CC piece 0 (`[½,1]×[0,½]`) along `u = 0`, piece 1 along
 //! `v = 0` (as `capdiv_mesh::evaluate` marks them).
 
-use crate::args::ShapeScheme;
+use crate::args::{ShapeScheme, DEFAULT_MAX_PATCHES};
 use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::commands::eg::{cnet, subdivision};
 use crate::commands::polar::Config;
+use crate::commands::surface::check_size;
 use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
@@ -413,6 +414,7 @@ fn mesh_shape(
         },
     )
     .map_err(mesh_err)?;
+    check_size(name, &plan, DEFAULT_MAX_PATCHES)?;
     let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::eval(name, error))?;
     let mut out = Collect::default();
     ev.evaluate(&plan, &mesh.vertices, &mut out)

@@ -1109,3 +1109,49 @@ fn summary_reports_levels_and_fallbacks() {
         run.stderr
     );
 }
+
+/// `--max-patches` refuses, after the analysis and before making any
+/// patch, a surface of more patches than allowed, saying how many it would
+/// have: exactly the number the surface has without the limit.
+#[test]
+fn max_patches_refuses_a_larger_surface_and_says_its_size() {
+    let dir = tempdir();
+    let path = write(
+        dir.path(),
+        "cube.obj",
+        &obj_text(&samples::cube(), Corners::Plain),
+    );
+    let full = surface(&["--depth", "3"], s(&path), None);
+    let n = full["patches"].as_array().unwrap().len();
+    let at = capdiv(
+        &[
+            "surface",
+            "--depth",
+            "3",
+            "--max-patches",
+            &n.to_string(),
+            s(&path),
+        ],
+        None,
+    );
+    assert_eq!(at.code, Some(0), "{}", at.stderr);
+    let run = capdiv(
+        &[
+            "surface",
+            "--depth",
+            "3",
+            "--max-patches",
+            &(n - 1).to_string(),
+            s(&path),
+        ],
+        None,
+    );
+    assert_eq!(run.code, Some(2));
+    assert!(run.stdout.is_empty());
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(
+        run.stderr.contains(&format!("would have {n} patches")),
+        "{}",
+        run.stderr
+    );
+}

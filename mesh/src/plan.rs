@@ -258,6 +258,29 @@ struct Pass {
 }
 
 impl<'t> SurfacePlan<'t> {
+    /// The number of patches [`crate::Evaluator::evaluate`] hands on,
+    /// known before any is made: one per regular face, `3n` per ring of an
+    /// EG or Catmull-Clark cap of valence `n`, and `2·n·2^m` at level
+    /// `m = 1..=depth` of a C²PS cap of valence `n` (its two spans of
+    /// `n·2^m` columns). Saturates at `u64::MAX`.
+    pub fn patch_count(&self) -> u64 {
+        let depth = u64::from(self.options.depth);
+        let ev = self.ev.iter().map(|e| {
+            3u64.saturating_mul(e.sectors.len() as u64)
+                .saturating_mul(depth)
+        });
+        // Σ_{m=1..depth} 2·n·2^m = 4n·(2^depth − 1).
+        let levels = 1u64
+            .checked_shl(self.options.depth)
+            .map_or(u64::MAX, |p| p - 1);
+        let polar = self
+            .polar
+            .iter()
+            .map(|p| 4u64.saturating_mul(p.valence as u64).saturating_mul(levels));
+        ev.chain(polar)
+            .fold(self.regular.len() as u64, u64::saturating_add)
+    }
+
     /// Analyses a validated mesh without tags (OpenSubdiv's defaults:
     /// edge-and-corner boundaries, no creases).
     pub fn new(topo: &Topology, options: PlanOptions<'t>) -> Result<Self, MeshError> {

@@ -586,3 +586,35 @@ fn adaptive_caps_join_their_surroundings_c2() {
         "normal {wn:e}, H {wh:e}, K {wk:e}"
     );
 }
+
+/// `SurfacePlan::patch_count` is the number of patches the evaluation hands
+/// on, known before evaluating (the CLI refuses too large a surface with
+/// it): on every sample mesh with C²PS, EG, Catmull-Clark caps, adaptive
+/// refinement and whole-mesh steps, at depths 1..4, in both modes.
+#[test]
+fn patch_count_is_known_before_evaluation() {
+    let meshes = [
+        ("globe", samples::globe(8, 6)),
+        ("mushroom", samples::mushroom()),
+        ("hand", samples::hand()),
+        ("cube", samples::cube()),
+        ("two_beam_corner", samples::two_beam_corner()),
+        (
+            "triangle_and_pentagon",
+            samples::triangle_and_pentagon_mesh(),
+        ),
+        ("extraordinary_disk(7)", samples::extraordinary_disk(7, 3)),
+    ];
+    for (name, m) in &meshes {
+        for depth in 1..=4 {
+            for cc in [false, true] {
+                let (plan, c) = plan_and_evaluate(m, depth, cc);
+                assert_eq!(
+                    plan.patch_count(),
+                    c.patches.len() as u64,
+                    "{name} depth {depth} cc {cc}"
+                );
+            }
+        }
+    }
+}

@@ -24,7 +24,7 @@
 //! after the output has been written; exit status 0.
 
 use super::Outcome;
-use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme};
+use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, DEFAULT_MAX_PATCHES};
 use crate::error::{CliError, Naming};
 use crate::export::gltf;
 use crate::input::{parse, Input, Source};
@@ -160,7 +160,15 @@ fn produce<R: Scalar>(
     weld: f64,
 ) -> Result<(Vec<u8>, String), CliError> {
     let cc = args.scheme == SurfaceScheme::CatmullClark;
-    let surface = build_scheme::<R>(name, mesh, args.depth, tables, precision, cc)?;
+    let surface = build_scheme::<R>(
+        name,
+        mesh,
+        args.depth,
+        tables,
+        precision,
+        cc,
+        args.max_patches,
+    )?;
     let grid = args.grid as usize;
     let format = args.format();
     Ok(match format {
@@ -178,7 +186,13 @@ fn produce<R: Scalar>(
             // `tessellate_surface`); f64 output needs no guide.
             let guide = if precision == "f32" {
                 Some(build_scheme::<f64>(
-                    name, mesh, args.depth, tables, "f64", cc,
+                    name,
+                    mesh,
+                    args.depth,
+                    tables,
+                    "f64",
+                    cc,
+                    args.max_patches,
                 )?)
             } else {
                 None
@@ -249,6 +263,19 @@ impl<R: Clone> SurfaceSink<R> for Collect<R> {
     }
 }
 
+/// Refuses a plan of more than `max` patches ([`CliError::TooLarge`]).
+pub fn check_size(name: &str, plan: &SurfacePlan<'_>, max: u64) -> Result<(), CliError> {
+    let patches = plan.patch_count();
+    if patches > max {
+        return Err(CliError::TooLarge {
+            source: name.to_string(),
+            patches,
+            max,
+        });
+    }
+    Ok(())
+}
+
 /// Validates, analyses and evaluates `mesh` in `R` (positions cast), the
 /// default scheme.
 pub fn build<R: Scalar>(
@@ -258,11 +285,20 @@ pub fn build<R: Scalar>(
     tables: &[Table],
     precision: &str,
 ) -> Result<Surface<R>, CliError> {
-    build_scheme(name, mesh, depth, tables, precision, false)
+    build_scheme(
+        name,
+        mesh,
+        depth,
+        tables,
+        precision,
+        false,
+        DEFAULT_MAX_PATCHES,
+    )
 }
 
 /// [`build`], with Catmull-Clark caps everywhere when `catmull_clark`
-/// (`--scheme catmull-clark`).
+/// (`--scheme catmull-clark`), refusing a surface of more than
+/// `max_patches` patches before making any.
 pub fn build_scheme<R: Scalar>(
     name: &str,
     mesh: &MeshInput,
@@ -270,6 +306,7 @@ pub fn build_scheme<R: Scalar>(
     tables: &[Table],
     precision: &str,
     catmull_clark: bool,
+    max_patches: u64,
 ) -> Result<Surface<R>, CliError> {
     let mesh_err = |error| CliError::mesh(name, error);
     let eval_err = |error| CliError::eval(name, error);
@@ -284,6 +321,7 @@ pub fn build_scheme<R: Scalar>(
         },
     )
     .map_err(mesh_err)?;
+    check_size(name, &plan, max_patches)?;
     let analysis = start.elapsed();
 
     let start = Instant::now();
