@@ -503,6 +503,7 @@ test('the viewer in headless chromium', async (t) => {
       await page.selectOption('#shading', 'highlight');
       assert.equal(await page.inputValue('#lines'), '10');
       const pitch = 1.5;
+      const orbit = await page.evaluate(() => window.capdiv.camera());
       await page.evaluate((p) => window.capdiv.setCamera({ yaw: 0, pitch: p, target: [0, 0, 0] }), pitch);
       // Stripe centres along the canvas's middle column, between the first
       // and last surface pixels: runs of pixels darker than halfway between
@@ -581,6 +582,7 @@ test('the viewer in headless chromium', async (t) => {
       console.log(`5 lines: spacing ${s5.toFixed(2)} px (${(before.height / s5).toFixed(3)} across)`);
       assert.ok(Math.abs(s5 / s1 - 2) < 0.04, `5 lines: spacing ${s5} px, 10 lines: ${s1} px`);
       await page.fill('#lines', '10');
+      await page.evaluate((o) => window.capdiv.setCamera({ yaw: o.yaw, pitch: o.pitch }), orbit);
       await page.selectOption('#shading', 'plain');
       await page.selectOption('#sample', { label: 'mushroom' });
       await page.waitForFunction(() => /^mushroom/.test(document.getElementById('status').textContent));
