@@ -11,8 +11,9 @@
 #      show a message, an empty surface is an error, a mesh far from the
 #      origin is framed as at the origin, a control-point drag changes the
 #      surface, the edited mesh and the surface save as OBJ, scheme and depth
-#      re-plan, the up toggle, highlight lines anti-aliased on a tall object;
-#      prints the edit-to-surface times per sample.
+#      re-plan, the up toggle, highlight lines anti-aliased on a tall object,
+#      highlight lines spaced relative to the view through a zoom; prints the
+#      edit-to-surface times per sample.
 # Prints its run time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)

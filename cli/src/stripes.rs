@@ -23,8 +23,7 @@
 use crate::camera::{cross, dot, unit, Fit, V3};
 use capdiv_mesh::shade::HighlightLines;
 
-/// Default number of light-line spacings across a panel's visible height.
-pub const DEFAULT_LINES: f64 = 10.0;
+pub use capdiv_mesh::shade::DEFAULT_LINES;
 
 /// Half-width of a stripe's pulse, in light-line spacings.
 pub const STRIPE_WIDTH: f64 = 0.12;

@@ -50,6 +50,12 @@ fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
     (len > 0.0 && len.is_finite()).then(|| [a[0] / len, a[1] / len, a[2] / len])
 }
 
+/// Default number of light-line spacings across a picture's visible height:
+/// the CLI's `--lines`, the browser viewer's *lines*. A flat region facing
+/// the light shows that many stripes across the picture whatever the
+/// object's size or zoom.
+pub const DEFAULT_LINES: f64 = 10.0;
+
 /// A family of parallel light lines `A + t·E + k·s·D` (`k` integer) in the
 /// light plane through `A` spanned by `E` and `D`, `D ⟂ E` unit vectors,
 /// spacing `s`.
@@ -86,8 +92,8 @@ impl HighlightLines {
         })
     }
 
-    /// The light lines a viewer uses for a surface of bounding box
-    /// `[lo, hi]`: the light plane a box diagonal above the box's top face
+    /// Light lines relative to a surface of bounding box `[lo, hi]`: the
+    /// light plane a box diagonal above the box's top face
     /// (`+z`), lines along `y`, about `count` of them across the box.
     pub fn for_box(lo: [f64; 3], hi: [f64; 3], count: f64) -> Option<Self> {
         let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);

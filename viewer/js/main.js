@@ -14,6 +14,7 @@ const ui = {
   grid: $('grid'),
   shading: $('shading'),
   up: $('up'),
+  lines: $('lines'),
   net: $('net'),
   reset: $('reset'),
   file: $('file'),
@@ -35,6 +36,8 @@ const state = {
   pending: null,
   frame: 0,
   lastEdit: null,
+  // The view last given to the module for the light lines.
+  viewKey: null,
 };
 
 function options() {
@@ -99,14 +102,38 @@ function listFile(name) {
   ui.sample.value = 'file';
 }
 
+// Light-line spacings across the picture's height: the control's value, or
+// the module's default while the control holds no valid number (an integer
+// in its range).
+function lineCount() {
+  return ui.lines.value !== '' && ui.lines.checkValidity() ? Number(ui.lines.value) : state.viewer.defaultLines();
+}
+
+// The light lines follow the view: lineCount() spacings across the
+// picture's height at the orbit target's depth, line 0 through the target.
+// Gives the module the current view when the target, the zoom or the count
+// changed (or always, with force); returns whether it did. The module then
+// rewrites only the highlight parameters.
+function syncView(force) {
+  const c = state.camera;
+  const height = c.visibleHeight();
+  const lines = lineCount();
+  const key = [...c.target, height, lines].join(' ');
+  if (!force && key === state.viewKey) return false;
+  state.viewer.setView(c.target, height, lines);
+  state.viewKey = key;
+  return true;
+}
+
 function uploadAll(frame) {
   const v = state.viewer;
-  state.renderer.uploadSurface(v.surface());
-  state.renderer.uploadNet(v.control(), true);
   if (frame) {
     const b = v.bounds();
     if (b.lo.every(Number.isFinite) && b.hi.every(Number.isFinite)) state.camera.frame(b.lo, b.hi);
   }
+  syncView(true);
+  state.renderer.uploadSurface(v.surface());
+  state.renderer.uploadNet(v.control(), true);
   updateStatus();
   requestDraw();
 }
@@ -147,6 +174,12 @@ function requestDraw() {
   state.frame = requestAnimationFrame(() => {
     state.frame = 0;
     if (state.pending) applyPendingEdit();
+    // A zoom or pan moves the light lines: at most once a frame.
+    try {
+      if (syncView(false) && ui.shading.value === 'highlight') state.renderer.uploadStripes(state.viewer.surface());
+    } catch (e) {
+      showMessage(describeError(e));
+    }
     state.renderer.draw(state.camera, SHADING_CODES[ui.shading.value], ui.net.checked);
   });
 }
@@ -325,6 +358,7 @@ ui.up.addEventListener('change', () => {
   });
 });
 ui.net.addEventListener('change', requestDraw);
+ui.lines.addEventListener('input', requestDraw);
 
 // ---- export: Wavefront OBJ downloads ----
 
@@ -403,6 +437,7 @@ window.addEventListener('resize', requestDraw);
 async function start() {
   state.renderer = new Renderer(ui.canvas);
   state.viewer = await Viewer.load(new URL('build/capdiv_viewer.wasm', document.baseURI));
+  ui.lines.value = String(state.viewer.defaultLines());
   state.viewer.samples().forEach((s, i) => {
     const o = document.createElement('option');
     o.value = String(i);
@@ -445,6 +480,17 @@ window.capdiv = {
   },
   cameraUp() {
     return state.camera.upVector();
+  },
+  // The orbit camera: yaw, pitch (radians), distance, target, and the
+  // world length the picture's height spans at the target's depth.
+  camera() {
+    const c = state.camera;
+    return { yaw: c.yaw, pitch: c.pitch, distance: c.distance, target: c.target.slice(), height: c.visibleHeight() };
+  },
+  // Sets some of yaw, pitch, distance and target.
+  setCamera(o) {
+    for (const k of ['yaw', 'pitch', 'distance', 'target']) if (o[k] !== undefined) state.camera[k] = o[k];
+    requestDraw();
   },
   exportObj(what) {
     return state.viewer.exportObj(what);

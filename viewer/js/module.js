@@ -84,6 +84,18 @@ export class Viewer {
     this.check(this.w.viewer_set_up(code));
   }
 
+  // The view the highlight lines are spaced in: the orbit target, the world
+  // length the picture's height spans at its depth, and the line spacings
+  // across it. Under the highlight shading only the stripe buffer changes.
+  setView(target, height, lines) {
+    this.check(this.w.viewer_set_view(target[0], target[1], target[2], height, lines));
+  }
+
+  // Light-line spacings across the picture's height by default (the CLI's).
+  defaultLines() {
+    return this.w.viewer_default_lines();
+  }
+
   // Wavefront OBJ text of the control mesh as edited ('mesh') or of the
   // shown surface ('surface').
   exportObj(what) {

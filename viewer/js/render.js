@@ -78,6 +78,11 @@ export class Camera {
     return multiply(perspective(this.fovy, aspect, near, far), lookAt(this.eye(), this.target, this.upVector()));
   }
 
+  // World length the picture's height spans at the target's depth.
+  visibleHeight() {
+    return 2 * this.distance * Math.tan(this.fovy / 2);
+  }
+
   // World length of one pixel at the depth of point p.
   pixelSize(p, heightPx) {
     const depth = dot(sub(this.eye(), p), this.axes().back);
@@ -259,6 +264,14 @@ export class Renderer {
       gl.bindBuffer(gl.ARRAY_BUFFER, this.buffers[name]);
       gl.bufferSubData(gl.ARRAY_BUFFER, a * per * bytes, data, a * per, (b - a) * per);
     }
+  }
+
+  // The highlight parameters only (after a new view).
+  uploadStripes(s) {
+    const gl = this.gl;
+    gl.bindVertexArray(null);
+    gl.bindBuffer(gl.ARRAY_BUFFER, this.buffers.stripe);
+    gl.bufferSubData(gl.ARRAY_BUFFER, 0, s.stripes);
   }
 
   uploadNet(c, full) {

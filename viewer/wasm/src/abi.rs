@@ -9,7 +9,7 @@
 //! Shading codes: 0 plain, 1 highlight lines, 2 Gaussian, 3 mean curvature.
 
 use crate::input;
-use crate::paint::Mode;
+use crate::paint::{Mode, View};
 use crate::samples::SAMPLES;
 use crate::scene::{Options, Scene, Up};
 use std::cell::RefCell;
@@ -186,7 +186,7 @@ pub extern "C" fn viewer_rescale() -> i32 {
 }
 
 /// The axis shown upward: 0 `z`, 1 `y` (the highlight lines' light plane
-/// lies above the surface along it).
+/// lies above the surface along it). Repaints the whole surface.
 #[no_mangle]
 pub extern "C" fn viewer_set_up(axis: u32) -> i32 {
     on_scene(|sc| {
@@ -198,6 +198,29 @@ pub extern "C" fn viewer_set_up(axis: u32) -> i32 {
         sc.set_up(up);
         Ok(())
     })
+}
+
+/// The view the highlight lines are spaced in: the orbit target
+/// `(x, y, z)`, the world length `height` the picture's height spans at its
+/// depth, and `lines` line spacings across that height. Under the highlight
+/// shading only the per-vertex highlight parameters change (re-read them
+/// with [`viewer_stripes`]).
+#[no_mangle]
+pub extern "C" fn viewer_set_view(x: f64, y: f64, z: f64, height: f64, lines: f64) -> i32 {
+    on_scene(|sc| {
+        sc.set_view(View {
+            target: [x, y, z],
+            height,
+            lines,
+        })
+    })
+}
+
+/// Light-line spacings across the picture's height by default (the CLI's
+/// `--lines` default, [`capdiv_mesh::shade::DEFAULT_LINES`]).
+#[no_mangle]
+pub extern "C" fn viewer_default_lines() -> f64 {
+    capdiv_mesh::shade::DEFAULT_LINES
 }
 
 /// Puts Wavefront OBJ text into the text buffer: `what` 0 the control mesh

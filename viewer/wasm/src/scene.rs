@@ -4,7 +4,7 @@
 //! on the same plan, then the per-vertex tessellation and paint — never the
 //! analysis. Options (depth, scheme, grid) make a new plan.
 
-use crate::paint::{self, Mode, Paint};
+use crate::paint::{self, Mode, Paint, View};
 use crate::tess::{Surface, Tessellator};
 use capdiv::Point3;
 use capdiv_mesh::shade::HighlightLines;
@@ -139,6 +139,7 @@ pub struct Scene {
     mode: Mode,
     up: Up,
     scale: f64,
+    view: View,
     lines: Option<HighlightLines>,
     /// Edges of the control mesh (pairs of vertex indices, each once).
     pub edges: Vec<u32>,
@@ -175,11 +176,14 @@ impl Scene {
             mode,
             up: Up::Z,
             scale: 1.0,
+            view: View::of_box([0.0; 3], [0.0; 3]),
             lines: None,
             edges: edges.into_iter().flat_map(|(a, b)| [a, b]).collect(),
         };
         scene.evaluate()?;
         scene.require_surface()?;
+        let (lo, hi) = (scene.surface().lo, scene.surface().hi);
+        scene.view = View::of_box(lo, hi);
         scene.rescale();
         Ok(scene)
     }
@@ -289,9 +293,31 @@ impl Scene {
     pub fn rescale(&mut self) {
         let s = &self.tess.surface;
         self.scale = paint::scale(s, self.mode);
-        self.lines = paint::lines(s.lo, s.hi, self.up);
+        self.lines = paint::lines(s.lo, s.hi, self.up, &self.view);
         self.tess.dirty = (0, s.len());
         self.repaint();
+    }
+
+    /// The view the light lines are spaced in (the page's camera); under
+    /// the highlight shading the per-vertex parameters are rewritten, and
+    /// nothing else ([`paint::restripe`]). On error the view stays.
+    pub fn set_view(&mut self, view: View) -> Result<(), String> {
+        view.check()?;
+        if view == self.view {
+            return Ok(());
+        }
+        self.view = view;
+        let s = &self.tess.surface;
+        self.lines = paint::lines(s.lo, s.hi, self.up, &self.view);
+        if self.mode == Mode::Highlight {
+            paint::restripe(s, self.mode, self.lines.as_ref(), &mut self.paint);
+        }
+        Ok(())
+    }
+
+    /// The view the light lines are spaced in.
+    pub fn view(&self) -> View {
+        self.view
     }
 
     /// The axis shown upward: the light plane of the highlight lines lies
@@ -891,6 +917,53 @@ mod tests {
             .filter(|(x, y)| (*x - *y).abs() > 0.1)
             .count();
         assert!(differ > sa.len() / 4, "{differ} of {}", sa.len());
+    }
+
+    #[test]
+    fn a_new_view_rewrites_only_the_highlight_parameters() {
+        let s = crate::samples::by_name("mushroom").unwrap();
+        let o = Options {
+            depth: 3,
+            ..Options::default()
+        };
+        let mut sc = Scene::new("mushroom", (s.build)(), o, Mode::Highlight).unwrap();
+        let before = sc.paint.clone();
+        let v = sc.view();
+        assert_eq!(v.lines, capdiv_mesh::shade::DEFAULT_LINES);
+        // Half the visible height, the same target: twice the parameter
+        // (line 0 stays through the target), nothing else changes.
+        sc.set_view(View {
+            height: 0.5 * v.height,
+            ..v
+        })
+        .unwrap();
+        assert_eq!(sc.paint.positions, before.positions);
+        assert_eq!(sc.paint.normals, before.normals);
+        assert_eq!(sc.paint.colors, before.colors);
+        let mut lines = 0;
+        for (a, b) in before.stripes.iter().zip(&sc.paint.stripes) {
+            if *a != paint::NO_LINE {
+                assert!((b - 2.0 * a).abs() <= 1e-6 * b.abs().max(1.0), "{a} {b}");
+                lines += 1;
+            }
+        }
+        assert!(lines > before.stripes.len() / 2, "{lines}");
+        // A bad view is refused and changes nothing.
+        let stripes = sc.paint.stripes.clone();
+        assert!(sc
+            .set_view(View {
+                height: f64::NAN,
+                ..v
+            })
+            .is_err());
+        assert_eq!(sc.paint.stripes, stripes);
+        // The view set under another shading is the highlight shading's
+        // once chosen.
+        let mut plain = Scene::new("mushroom", (s.build)(), o, Mode::Plain).unwrap();
+        plain.set_view(sc.view()).unwrap();
+        assert!(plain.paint.stripes.iter().all(|&t| t == paint::NO_LINE));
+        plain.set_mode(Mode::Highlight);
+        assert_eq!(plain.paint.stripes, sc.paint.stripes);
     }
 
     #[test]
