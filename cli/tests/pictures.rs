@@ -10,32 +10,6 @@ use capdiv_cli::picture::{highlight_lines, probe, Camera, LightLines};
 use capdiv_mesh::MeshInput;
 use common::*;
 
-struct Png {
-    w: usize,
-    h: usize,
-    rgb: Vec<u8>,
-}
-
-fn read_png(path: &std::path::Path) -> Png {
-    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let mut reader = dec.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    buf.truncate(info.buffer_size());
-    Png {
-        w: info.width as usize,
-        h: info.height as usize,
-        rgb: buf,
-    }
-}
-
-impl Png {
-    fn at(&self, x: usize, y: usize) -> [u8; 3] {
-        let k = 3 * (y * self.w + x);
-        [self.rgb[k], self.rgb[k + 1], self.rgb[k + 2]]
-    }
-}
-
 const BACKGROUND: [u8; 3] = [246, 246, 246];
 
 /// A closed tube of radius 1 around the z-axis from z = 0 to z = 12: 13

@@ -9,7 +9,7 @@ use capdiv_cli::input::Input;
 use capdiv_cli::picture::{highlight_lines, probe, Camera, LightLines, HATCH, LEGEND_HEIGHT};
 use capdiv_cli::samples::{sample_cnet, sample_surface};
 use capdiv_cli::shape::build;
-use common::capdiv;
+use common::{capdiv, read_png};
 
 /// Highlight lines of a plane, through the render path (rasterised
 /// tessellation → per-pixel (u, v) → patch jet → normal → the lines'
@@ -136,38 +136,6 @@ fn highlight_stripes_of_a_plane_are_straight_and_evenly_spaced() {
             "{scheme:?}: {} pixels, residual {resid:.1e}, stripe gaps {gaps:?} (supersamples)",
             pts.len()
         );
-    }
-}
-
-struct Png {
-    w: usize,
-    h: usize,
-    rgb: Vec<u8>,
-}
-
-fn read_png(path: &std::path::Path) -> Png {
-    let dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let mut reader = dec.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    assert_eq!(info.color_type, png::ColorType::Rgb);
-    buf.truncate(info.buffer_size());
-    Png {
-        w: info.width as usize,
-        h: info.height as usize,
-        rgb: buf,
-    }
-}
-
-impl Png {
-    fn at(&self, x: usize, y: usize) -> [u8; 3] {
-        let k = 3 * (y * self.w + x);
-        [self.rgb[k], self.rgb[k + 1], self.rgb[k + 2]]
-    }
-    fn count(&self, rows: std::ops::Range<usize>, f: impl Fn([u8; 3]) -> bool) -> usize {
-        rows.flat_map(|y| (0..self.w).map(move |x| (x, y)))
-            .filter(|&(x, y)| f(self.at(x, y)))
-            .count()
     }
 }
 

@@ -160,6 +160,34 @@ pub fn diff(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
 }
 
+/// An 8-bit RGB picture read from a PNG file.
+pub struct Png {
+    pub w: usize,
+    pub h: usize,
+    pub rgb: Vec<u8>,
+}
+
+/// Reads the 8-bit RGB PNG at `path`.
+pub fn read_png(path: &std::path::Path) -> Png {
+    let (w, h, rgb) = decode_png(&std::fs::read(path).expect("read the PNG"));
+    Png { w, h, rgb }
+}
+
+impl Png {
+    /// The colour of pixel `(x, y)`.
+    pub fn at(&self, x: usize, y: usize) -> [u8; 3] {
+        let k = 3 * (y * self.w + x);
+        [self.rgb[k], self.rgb[k + 1], self.rgb[k + 2]]
+    }
+
+    /// Pixels of `rows` whose colour passes `f`.
+    pub fn count(&self, rows: std::ops::Range<usize>, f: impl Fn([u8; 3]) -> bool) -> usize {
+        rows.flat_map(|y| (0..self.w).map(move |x| (x, y)))
+            .filter(|&(x, y)| f(self.at(x, y)))
+            .count()
+    }
+}
+
 /// Width, height and RGB bytes of an 8-bit RGB PNG.
 pub fn decode_png(bytes: &[u8]) -> (usize, usize, Vec<u8>) {
     let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
