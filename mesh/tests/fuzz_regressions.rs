@@ -119,7 +119,10 @@ fn tagged_tetrahedron_tessellates_closed() {
 /// that lists a vertex twice (`f 3 6 3 2`, its two edges to vertex 6 each
 /// run twice). Planned as OpenSubdiv takes it (tests/osd_surface.rs compares
 /// such faces with OpenSubdiv), every face covered, in well under a second
-/// (the refinement once ran for seconds on it).
+/// (the refinement once ran for seconds on it); it and faces that are all
+/// one vertex, alternate two, or close a degenerate edge beside a face on
+/// the same vertices evaluate finitely and tessellate at depths 1–3, either
+/// mode.
 #[test]
 fn face_with_repeated_vertex_is_planned_quickly() {
     let obj = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\n\
@@ -135,5 +138,20 @@ fn face_with_repeated_vertex_is_planned_quickly() {
         let plan = SurfacePlan::for_mesh(&mesh, options).unwrap();
         assert!(plan.uncovered.is_empty(), "{:?}", plan.uncovered);
         assert!(start.elapsed().as_secs_f64() < 1.0);
+    }
+    let odd = [
+        "v 0 0 0\nf 1 1 1\n",
+        "v 0 0 0\nf 1 1 1 1\n",
+        "v 0 0 0\nv 1 0 0\nf 1 2 1 2 1 2\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\nf 2 1 3\n",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nf 1 2 1 3\nf 2 1 4\nf 1 2 4\n",
+    ];
+    for text in [obj].iter().chain(&odd) {
+        let mesh = parse_obj(text).unwrap();
+        for depth in 1..=3 {
+            for cc in [false, true] {
+                let _ = run(&mesh, depth, cc);
+            }
+        }
     }
 }
