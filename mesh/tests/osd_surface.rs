@@ -4,7 +4,7 @@
 //! and 2 rings from the boundary, creases of sharpness 0.5, 1, 2.5, 4 and 10,
 //! crease chains, darts, crease vertices with 3 and more sharp edges,
 //! Chaikin, corners, holes, non-manifold edges and vertices, interior
-//! valence-2 vertices, triangles and n-gons.
+//! valence-2 vertices, triangles and n-gons, faces listing a vertex twice.
 //!
 //! With every cap Catmull-Clark (`PlanOptions::catmull_clark`), every
 //! capdiv patch is sampled at 3×3 interior parameters and asked of
@@ -667,7 +667,8 @@ fn faces_listing_a_vertex_twice() {
     // as the neighbour's, or none doubled), consecutive ones (a degenerate
     // edge in a quad, a pentagon, a lone triangle), under every boundary
     // rule, one with semi-sharp Chaikin creases beside; lone faces and a
-    // third face on an edge a face runs twice.
+    // third face on an edge a face runs twice; depth 4, and 2 and 5 in
+    // either mode.
     // (name, mesh, the face that lists a vertex twice)
     let cases: Vec<(&str, MeshInput, u32)> = vec![
         (
@@ -751,6 +752,17 @@ fn faces_listing_a_vertex_twice() {
                 assert!(r.faces.contains(face), "{name}: face {face} not compared");
             }
             eprintln!("{name}: {} samples, worst {:e}", r.compared, r.worst);
+        }
+        // Other depths, and the default mode (its Catmull-Clark patches;
+        // EG caps, as at a pentagon's face point, differ by design).
+        for depth in [2, 5] {
+            for cc in [true, false] {
+                let (r, _) = compare_in(name, m, depth, cc);
+                eprintln!(
+                    "{name} depth {depth} cc {cc}: {} samples, worst {:e}",
+                    r.compared, r.worst
+                );
+            }
         }
     }
     let mut m = grid_with_middle(|q| vec![q[0], q[1], q[0], q[2]]);
