@@ -15,8 +15,8 @@
 //!
 //! Oracle: no panic; every failure a typed `MeshError` / `EvalError`;
 //! `for_mesh` succeeds on every mesh it documents as accepted (faces of ≥ 3
-//! distinct in-range vertices, finite positions, tag indices in range) and leaves no
-//! face uncovered; every successful evaluation is finite (any magnitude);
+//! in-range vertices, a vertex listed twice included, finite positions, tag
+//! indices in range) and leaves no face uncovered; every successful evaluation is finite (any magnitude);
 //! the tessellation (up to 2000 patches) indexes its own vertices; and when
 //! the input is a closed, consistently oriented manifold (`Topology::new`
 //! succeeds, `is_closed`) without hole tags, the f64 surface at generic
@@ -159,11 +159,6 @@ fn acceptable(mesh: &MeshInput) -> bool {
             .faces
             .iter()
             .all(|f| f.len() >= 3 && f.iter().all(|&v| (v as usize) < nv))
-        // A face listing a vertex twice is refused (MeshError::RepeatedVertex).
-        && mesh
-            .faces
-            .iter()
-            .all(|f| f.iter().enumerate().all(|(k, v)| !f[..k].contains(v)))
         && mesh
             .tags
             .creases

@@ -70,7 +70,8 @@ pub enum MeshError {
         /// Its number of vertices.
         len: usize,
     },
-    /// A face that lists one vertex twice.
+    /// A face that lists one vertex twice ([`crate::Topology::new`] only;
+    /// [`crate::SurfacePlan::for_mesh`] takes such faces, as OpenSubdiv does).
     RepeatedVertex {
         /// The face.
         face: usize,

@@ -828,8 +828,10 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
 
 /// OpenSubdiv's refusals, in this order: no faces or vertices, more than
 /// 2³¹ items, a non-finite coordinate, then per face fewer than 3 vertices or
-/// an index out of range (and, unlike OpenSubdiv, a vertex listed twice),
-/// then tags naming a vertex or face that does not exist.
+/// an index out of range, then tags naming a vertex or face that does not
+/// exist. A face may list a vertex more than once, as OpenSubdiv's may (the
+/// base level makes its edges as OpenSubdiv does,
+/// [`crate::adaptive::level::Level::new`]).
 fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
     check_sizes_and_positions(mesh)?;
     let nv = mesh.vertices.len();
@@ -843,14 +845,6 @@ fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
                 face,
                 index: i64::from(index),
                 vertices: nv,
-            });
-        }
-        // OpenSubdiv takes these, but its treatment of the degenerate edges
-        // they make is not reproduced here: refused.
-        if let Some(k) = (1..f.len()).find(|&k| f[..k].contains(&f[k])) {
-            return Err(MeshError::RepeatedVertex {
-                face,
-                vertex: f[k] as usize,
             });
         }
     }

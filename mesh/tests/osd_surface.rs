@@ -4,7 +4,7 @@
 //! and 2 rings from the boundary, creases of sharpness 0.5, 1, 2.5, 4 and 10,
 //! crease chains, darts, crease vertices with 3 and more sharp edges,
 //! Chaikin, corners, holes, non-manifold edges and vertices, interior
-//! valence-2 vertices, triangles and n-gons.
+//! valence-2 vertices, triangles and n-gons, faces listing a vertex twice.
 //!
 //! With every cap Catmull-Clark (`PlanOptions::catmull_clark`), every
 //! capdiv patch is sampled at 3×3 interior parameters and asked of
@@ -53,6 +53,8 @@ fn size(m: &MeshInput) -> f64 {
 struct Report {
     compared: usize,
     worst: f64,
+    /// The input faces with a sample compared.
+    faces: std::collections::BTreeSet<u32>,
 }
 
 /// Plans `m` with every cap Catmull-Clark, evaluates it and compares with
@@ -111,6 +113,7 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
     let mut worst = 0.0f64;
     let mut caps = 0.0f64;
     let mut compared = 0;
+    let mut faces = std::collections::BTreeSet::new();
     for (k, (a, (mine, level, kind))) in answers.iter().zip(&ours).enumerate() {
         match a {
             Answer::Exact(p, _) => {
@@ -126,6 +129,7 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
                 );
                 worst = worst.max(d);
                 compared += 1;
+                faces.insert(job.queries[k].face);
             }
             Answer::Irregular(_) => {}
             Answer::NoPatch => panic!(
@@ -135,7 +139,14 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
         }
     }
     assert!(compared > 0, "{name}: nothing compared");
-    (Report { compared, worst }, caps)
+    (
+        Report {
+            compared,
+            worst,
+            faces,
+        },
+        caps,
+    )
 }
 
 fn crease(a: u32, b: u32, s: f32) -> EdgeCrease {
@@ -620,4 +631,149 @@ fn default_mode_catmull_clark_regions_equal_opensubdiv() {
             r.compared, r.worst
         );
     }
+}
+
+/// A 7×7 grid whose middle quad `[q0, q1, q2, q3]` (face 24) becomes
+/// `face(q)`.
+fn grid_with_middle(face: fn(&[u32]) -> Vec<u32>) -> MeshInput {
+    let mut m = samples::grid(7, 7);
+    let q = m.faces[24].clone();
+    m.faces[24] = face(&q);
+    m
+}
+
+/// A 7×7 grid whose quads (2,2) and (3,3), diagonal neighbours at one
+/// vertex, are one octagon visiting that vertex twice (no edge repeated).
+fn grid_with_pinched_octagon() -> MeshInput {
+    let mut m = samples::grid(7, 7);
+    let c = gv(7, 3, 3);
+    let from_c = |f: &[u32]| -> Vec<u32> {
+        let k = f.iter().position(|&x| x == c).unwrap();
+        (0..4).map(|i| f[(k + i) % 4]).collect()
+    };
+    let mut octagon = from_c(&m.faces[16]);
+    octagon.extend(from_c(&m.faces[24]));
+    m.faces[16] = octagon;
+    m.faces.remove(24);
+    m
+}
+
+#[test]
+fn faces_listing_a_vertex_twice() {
+    // OpenSubdiv makes a face's edges one by one: an edge a face runs twice
+    // is two edges, both non-manifold; a degenerate edge (a, a) is
+    // non-manifold; so are their vertices. Non-consecutive repeats (both
+    // edges to the repeated vertex doubled, one doubled and run the same way
+    // as the neighbour's, or none doubled), consecutive ones (a degenerate
+    // edge in a quad, a pentagon, a lone triangle), under every boundary
+    // rule, one with semi-sharp Chaikin creases beside; lone faces and a
+    // third face on an edge a face runs twice; depth 4, and 2 and 5 in
+    // either mode.
+    // (name, mesh, the face that lists a vertex twice)
+    let cases: Vec<(&str, MeshInput, u32)> = vec![
+        (
+            "[a b a c]",
+            grid_with_middle(|q| vec![q[0], q[1], q[0], q[2]]),
+            24,
+        ),
+        (
+            "[a b c a d]",
+            grid_with_middle(|q| vec![q[0], q[1], q[2], q[0], q[3]]),
+            24,
+        ),
+        (
+            "[a a b c]",
+            grid_with_middle(|q| vec![q[0], q[0], q[1], q[2]]),
+            24,
+        ),
+        (
+            "[a a b c d]",
+            grid_with_middle(|q| vec![q[0], q[0], q[1], q[2], q[3]]),
+            24,
+        ),
+        (
+            "[a b a b]",
+            grid_with_middle(|q| vec![q[0], q[1], q[0], q[1]]),
+            24,
+        ),
+        ("pinched octagon", grid_with_pinched_octagon(), 16),
+        (
+            "lone [a b a c]",
+            MeshInput::new(
+                vec![[0.0, 0.0, 0.0], [1.0, 0.2, 0.1], [0.1, 1.0, -0.2]],
+                vec![vec![0, 1, 0, 2]],
+            ),
+            0,
+        ),
+        (
+            "lone [a b b]",
+            MeshInput::new(vec![[0.0, 0.0, 0.0], [1.0, 0.2, 0.1]], vec![vec![0, 1, 1]]),
+            0,
+        ),
+        (
+            "lone [a b a b a b]",
+            MeshInput::new(
+                vec![[0.0, 0.0, 0.0], [1.0, 0.3, 0.2]],
+                vec![vec![0, 1, 0, 1, 0, 1]],
+            ),
+            0,
+        ),
+        (
+            "lone [a b a c] [b a d] [a b d]",
+            MeshInput::new(
+                vec![
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.3, 0.2],
+                    [2.0, 1.2, 0.0],
+                    [3.0, 2.7, 0.2],
+                ],
+                vec![vec![0, 1, 0, 2], vec![1, 0, 3], vec![0, 1, 3]],
+            ),
+            0,
+        ),
+    ];
+    for (name, m, face) in &cases {
+        for b in [
+            BoundaryInterpolation::EdgeAndCorner,
+            BoundaryInterpolation::EdgeOnly,
+            BoundaryInterpolation::None,
+        ] {
+            let mut m = m.clone();
+            m.tags.boundary = b;
+            let name = format!("{name} {}", b.id());
+            if b == BoundaryInterpolation::None && name.starts_with("lone") {
+                // Every face is a hole: nothing to compare.
+                continue;
+            }
+            let r = compare(&name, &m, 4);
+            // Under VTX_BOUNDARY_NONE the face is a hole (its edges run
+            // once are boundary edges).
+            if b != BoundaryInterpolation::None {
+                assert!(r.faces.contains(face), "{name}: face {face} not compared");
+            }
+            eprintln!("{name}: {} samples, worst {:e}", r.compared, r.worst);
+        }
+        // Other depths, and the default mode (its Catmull-Clark patches;
+        // EG caps, as at a pentagon's face point, differ by design).
+        for depth in [2, 5] {
+            for cc in [true, false] {
+                let (r, _) = compare_in(name, m, depth, cc);
+                eprintln!(
+                    "{name} depth {depth} cc {cc}: {} samples, worst {:e}",
+                    r.compared, r.worst
+                );
+            }
+        }
+    }
+    let mut m = grid_with_middle(|q| vec![q[0], q[1], q[0], q[2]]);
+    let q = samples::grid(7, 7).faces[24].clone();
+    m.tags.creases.push(crease(q[1], q[2], 2.5));
+    m.tags.creases.push(crease(q[2], gv(7, 5, 4), 1.5));
+    m.tags.crease_method = CreaseMethod::Chaikin;
+    let r = compare("[a b a c] with creases", &m, 4);
+    assert!(r.faces.contains(&24));
+    eprintln!(
+        "[a b a c] with creases: {} samples, worst {:e}",
+        r.compared, r.worst
+    );
 }

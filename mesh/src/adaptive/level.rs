@@ -12,6 +12,7 @@
 use super::crease::{is_semi_sharp, is_sharp, vertex_rule, Rule, INFINITE};
 use alloc::vec;
 use alloc::vec::Vec;
+use hashbrown::HashMap;
 
 /// One corner of a face: index into [`Level::corner_vertex`].
 pub type Corner = u32;
@@ -33,25 +34,66 @@ pub struct Level {
     pub point: Vec<u32>,
     /// Per vertex: sharpness.
     pub vertex_sharpness: Vec<f32>,
-    /// Per edge: its vertices (the smaller index first).
+    /// Per edge: its vertices (as made: the base level's from the face that
+    /// made it, a refined level's from the parent's component).
     pub edge_vertices: Vec<[u32; 2]>,
     /// Per edge: sharpness.
     pub edge_sharpness: Vec<f32>,
+    /// Per edge: OpenSubdiv's non-manifold tag (made at the base level,
+    /// inherited by the children of an edge).
+    pub edge_nonmanifold: Vec<bool>,
+    /// Per edge: how many edges between the same two vertices were made
+    /// before it (base level; 0 in a refined level, whose vertices are
+    /// distinct points wherever their edges are).
+    pub edge_instance: Vec<u32>,
     /// CSR: corners whose edge is this edge.
     edge_corner_start: Vec<u32>,
     edge_corners: Vec<Corner>,
     /// CSR: corners at this vertex.
     vertex_corner_start: Vec<u32>,
     vertex_corners: Vec<Corner>,
-    /// CSR: edges at this vertex.
+    /// CSR: edges at this vertex (a degenerate edge twice).
     vertex_edge_start: Vec<u32>,
     vertex_edges: Vec<u32>,
 }
 
+/// The faces of a level: corners face after face.
+#[derive(Clone, Debug, Default)]
+pub struct Faces {
+    /// `face_start[f]..face_start[f+1]` are face `f`'s corners.
+    pub face_start: Vec<u32>,
+    /// Vertex of each corner.
+    pub corner_vertex: Vec<u32>,
+    /// Face of each corner.
+    pub corner_face: Vec<u32>,
+    /// Edge of each corner (from the corner to the next one).
+    pub corner_edge: Vec<u32>,
+}
+
+/// The edges of a level.
+#[derive(Clone, Debug, Default)]
+pub struct Edges {
+    /// Per edge: its two vertices.
+    pub vertices: Vec<[u32; 2]>,
+    /// Per edge: sharpness.
+    pub sharpness: Vec<f32>,
+    /// Per edge: OpenSubdiv's non-manifold tag.
+    pub nonmanifold: Vec<bool>,
+    /// Per edge: [`Level::edge_instance`] (empty: all 0).
+    pub instance: Vec<u32>,
+}
+
 impl Level {
-    /// A level from faces (`faces[f]` = vertex indices), the point of each
-    /// vertex, vertex sharpness, hole flags and an edge sharpness lookup
-    /// (`sharp(a, b)` with `a < b`).
+    /// A base level from faces (`faces[f]` = vertex indices), the point of
+    /// each vertex, vertex sharpness, hole flags and an edge sharpness lookup
+    /// (`sharp(a, b)` with `a ≤ b`). Edges are made as OpenSubdiv's
+    /// `Vtr::Level::completeTopologyFromFaceVertices` makes them, face after
+    /// face: a face's edge from `a` to `b ≠ a` joins the first edge made
+    /// between them unless that edge's last face is this face (a face
+    /// running it twice), which makes a new edge, both then non-manifold;
+    /// an edge already with two faces, or with one face running it the same
+    /// way, becomes non-manifold; every degenerate edge (`a = b`) is a new,
+    /// non-manifold edge.
     pub fn new(
         faces: &[&[u32]],
         point: Vec<u32>,
@@ -59,7 +101,6 @@ impl Level {
         hole: Vec<bool>,
         mut sharp: impl FnMut(u32, u32) -> f32,
     ) -> Level {
-        let nv = point.len();
         let mut face_start = Vec::with_capacity(faces.len() + 1);
         let mut corner_vertex = Vec::new();
         let mut corner_face = Vec::new();
@@ -70,43 +111,86 @@ impl Level {
             face_start.push(corner_vertex.len() as u32);
         }
         let nc = corner_vertex.len();
-        // Edges: corners sorted by their (min, max) vertex pair.
-        let next = |c: usize| -> usize {
-            let f = corner_face[c] as usize;
-            let (a, b) = (face_start[f] as usize, face_start[f + 1] as usize);
-            if c + 1 == b {
-                a
-            } else {
-                c + 1
-            }
-        };
-        let pair = |c: usize| -> [u32; 2] {
-            let (a, b) = (corner_vertex[c], corner_vertex[next(c)]);
-            if a <= b {
-                [a, b]
-            } else {
-                [b, a]
-            }
-        };
-        let mut order: Vec<([u32; 2], u32)> = (0..nc).map(|c| (pair(c), c as u32)).collect();
-        order.sort_unstable();
         let mut corner_edge = vec![0u32; nc];
         let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
-        let mut edge_corner_start = vec![0u32];
-        let mut edge_corners = Vec::with_capacity(nc);
-        for &(p, c) in &order {
-            if edge_vertices.last() != Some(&p) {
-                if !edge_vertices.is_empty() {
-                    edge_corner_start.push(edge_corners.len() as u32);
+        let mut nonmanifold: Vec<bool> = Vec::new();
+        // Per edge: its face count and last face.
+        let mut face_count: Vec<u32> = Vec::new();
+        let mut last_face: Vec<u32> = Vec::new();
+        // The first edge made between two vertices, and how many.
+        let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+        let mut instance: Vec<u32> = Vec::new();
+        for (f, vs) in faces.iter().enumerate() {
+            let f = f as u32;
+            let base = face_start[f as usize] as usize;
+            for i in 0..vs.len() {
+                let (a, b) = (vs[i], vs[(i + 1) % vs.len()]);
+                let mut found = None;
+                let mut new_nonmanifold = a == b;
+                if a != b {
+                    if let Some(&(e, _)) = first.get(&(a.min(b), a.max(b))) {
+                        let e = e as usize;
+                        if last_face[e] == f {
+                            nonmanifold[e] = true;
+                            new_nonmanifold = true;
+                        } else {
+                            if face_count[e] > 1 || edge_vertices[e][0] == a {
+                                nonmanifold[e] = true;
+                            }
+                            found = Some(e);
+                        }
+                    }
                 }
-                edge_vertices.push(p);
+                let e = found.unwrap_or_else(|| {
+                    edge_vertices.push([a, b]);
+                    nonmanifold.push(new_nonmanifold);
+                    face_count.push(0);
+                    last_face.push(f);
+                    let e = edge_vertices.len() - 1;
+                    let made = first.entry((a.min(b), a.max(b))).or_insert((e as u32, 0));
+                    instance.push(made.1);
+                    made.1 += 1;
+                    e
+                });
+                face_count[e] += 1;
+                last_face[e] = f;
+                corner_edge[base + i] = e as u32;
             }
-            corner_edge[c as usize] = (edge_vertices.len() - 1) as u32;
-            edge_corners.push(c);
         }
-        edge_corner_start.push(edge_corners.len() as u32);
-        let edge_sharpness = edge_vertices.iter().map(|&[a, b]| sharp(a, b)).collect();
-        // Vertex incidence.
+        let edge_sharpness = edge_vertices
+            .iter()
+            .map(|&[a, b]| sharp(a.min(b), a.max(b)))
+            .collect();
+        Level::from_parts(
+            Faces {
+                face_start,
+                corner_vertex,
+                corner_face,
+                corner_edge,
+            },
+            Edges {
+                vertices: edge_vertices,
+                sharpness: edge_sharpness,
+                nonmanifold,
+                instance,
+            },
+            point,
+            vertex_sharpness,
+            hole,
+        )
+    }
+
+    /// A level from its faces and edges as they are (a refined level, whose
+    /// edges its parent's make), with the incidence derived from them.
+    pub fn from_parts(
+        faces: Faces,
+        edges: Edges,
+        point: Vec<u32>,
+        vertex_sharpness: Vec<f32>,
+        hole: Vec<bool>,
+    ) -> Level {
+        let nv = point.len();
+        let ne = edges.vertices.len();
         let csr = |keys: &mut dyn Iterator<Item = (u32, u32)>, n: usize| {
             let items: Vec<(u32, u32)> = keys.collect();
             let mut start = vec![0u32; n + 1];
@@ -124,31 +208,48 @@ impl Level {
             }
             (start, out)
         };
+        let (edge_corner_start, edge_corners) = csr(
+            &mut faces
+                .corner_edge
+                .iter()
+                .enumerate()
+                .map(|(c, &e)| (e, c as u32)),
+            ne,
+        );
         let (vertex_corner_start, vertex_corners) = csr(
-            &mut corner_vertex
+            &mut faces
+                .corner_vertex
                 .iter()
                 .enumerate()
                 .map(|(c, &v)| (v, c as u32)),
             nv,
         );
+        // Each edge at each of its ends: a degenerate edge twice, as
+        // OpenSubdiv lists it.
         let (vertex_edge_start, vertex_edges) = csr(
-            &mut edge_vertices.iter().enumerate().flat_map(|(e, &[a, b])| {
-                let e = e as u32;
-                // A degenerate edge (a = b) is listed once.
-                [(a, e)].into_iter().chain((a != b).then_some((b, e)))
-            }),
+            &mut edges
+                .vertices
+                .iter()
+                .enumerate()
+                .flat_map(|(e, &[a, b])| [(a, e as u32), (b, e as u32)]),
             nv,
         );
         Level {
-            face_start,
-            corner_vertex,
-            corner_edge,
-            corner_face,
+            face_start: faces.face_start,
+            corner_vertex: faces.corner_vertex,
+            corner_edge: faces.corner_edge,
+            corner_face: faces.corner_face,
             hole,
             point,
             vertex_sharpness,
-            edge_vertices,
-            edge_sharpness,
+            edge_vertices: edges.vertices,
+            edge_sharpness: edges.sharpness,
+            edge_nonmanifold: edges.nonmanifold,
+            edge_instance: if edges.instance.is_empty() {
+                vec![0; ne]
+            } else {
+                edges.instance
+            },
             edge_corner_start,
             edge_corners,
             vertex_corner_start,
@@ -235,11 +336,11 @@ impl Level {
         }
     }
 
-    /// Whether edge `e` is manifold: two faces running it in opposite
-    /// directions, two distinct ends.
+    /// Whether edge `e` is manifold: not tagged non-manifold, two faces
+    /// running it in opposite directions, two distinct ends.
     pub fn edge_is_manifold(&self, e: usize) -> bool {
         let cs = self.edge_corners(e);
-        cs.len() == 2 && {
+        !self.edge_nonmanifold[e] && cs.len() == 2 && {
             let [a, b] = self.edge_vertices[e];
             a != b && self.corner_vertex[cs[0] as usize] != self.corner_vertex[cs[1] as usize]
         }
@@ -279,20 +380,13 @@ impl Level {
     /// not sharp (one sector of one sheet), in counter-clockwise order, and
     /// whether the walk came back to `c`.
     pub fn fan(&self, c: Corner, out: &mut Vec<Corner>) -> bool {
-        self.walk(c, true, out)
-    }
-
-    /// [`Self::fan`], crossing sharp edges too when `stop_at_sharp` is false
-    /// (one fan of the vertex's faces).
-    fn walk(&self, c: Corner, stop_at_sharp: bool, out: &mut Vec<Corner>) -> bool {
         out.clear();
         out.push(c);
         let limit = self
             .vertex_corners(self.corner_vertex[c as usize] as usize)
             .len();
-        let crossable = |k: Corner| {
-            !(stop_at_sharp && is_sharp(self.edge_sharpness[self.corner_edge[k as usize] as usize]))
-        };
+        let crossable =
+            |k: Corner| !is_sharp(self.edge_sharpness[self.corner_edge[k as usize] as usize]);
         // Counter-clockwise: across the edge from prev(k) to k.
         let mut k = c;
         loop {
@@ -330,53 +424,110 @@ impl Level {
     /// Applies OpenSubdiv's base-level sharpening
     /// (`TopologyRefinerFactoryBase::prepareComponentTagsAndSharpness`):
     /// boundary and non-manifold edges infinitely sharp; a vertex of one face
-    /// and two edges an infinitely sharp corner when `sharpen_corners`; a
-    /// non-manifold vertex infinitely sharp unless it lies on an interior
-    /// non-manifold crease.
+    /// and two edges an infinitely sharp corner when `sharpen_corners`;
+    /// otherwise a non-manifold vertex (at a non-manifold edge, or whose
+    /// faces and edges [`Self::orders_around`] cannot order) infinitely sharp
+    /// unless it lies on an interior non-manifold crease (two non-manifold
+    /// edges, no boundary edge, more faces than edges).
     pub fn sharpen_base(&mut self, sharpen_corners: bool) {
         let ne = self.edge_vertices.len();
-        let nonmanifold_edge: Vec<bool> = (0..ne)
-            .map(|e| self.edge_corners(e).len() > 1 && !self.edge_is_manifold(e))
-            .collect();
-        for (e, nm) in nonmanifold_edge.iter().enumerate() {
-            if self.edge_corners(e).len() < 2 || *nm {
+        for e in 0..ne {
+            if self.edge_corners(e).len() < 2 || self.edge_nonmanifold[e] {
                 self.edge_sharpness[e] = INFINITE;
             }
         }
-        let mut fan = Vec::new();
-        for v in 0..self.num_vertices() {
-            let corners = self.vertex_corners(v);
-            if corners.is_empty() {
-                continue;
+        let mut nonmanifold = vec![false; self.num_vertices()];
+        for e in (0..ne).filter(|&e| self.edge_nonmanifold[e]) {
+            for v in self.edge_vertices[e] {
+                nonmanifold[v as usize] = true;
             }
+        }
+        for v in 0..self.num_vertices() {
             let edges = self.vertex_edges(v);
+            let faces = self.vertex_corners(v).len();
             let boundary = edges
                 .iter()
                 .filter(|&&e| self.edge_corners(e as usize).len() < 2)
                 .count();
             let nm_edges = edges
                 .iter()
-                .filter(|&&e| nonmanifold_edge[e as usize])
+                .filter(|&&e| self.edge_nonmanifold[e as usize])
                 .count();
-            let faces = corners.len();
-            if faces == 1 && edges.len() == 2 {
-                if sharpen_corners {
-                    self.vertex_sharpness[v] = INFINITE;
-                }
+            if faces == 1 && edges.len() == 2 && sharpen_corners {
+                self.vertex_sharpness[v] = INFINITE;
                 continue;
             }
-            // Non-manifold: a non-manifold edge, or more than one fan (fans
-            // cut only at boundary and non-manifold edges here).
-            let first = corners[0];
-            let mut one_fan = true;
-            if nm_edges == 0 {
-                self.walk(first, false, &mut fan);
-                one_fan = fan.len() == faces;
-            }
-            let nonmanifold = nm_edges > 0 || !one_fan;
+            let nonmanifold = nonmanifold[v] || !self.orders_around(v);
             if nonmanifold && !(nm_edges == 2 && boundary == 0 && faces > edges.len()) {
                 self.vertex_sharpness[v] = INFINITE;
             }
         }
+    }
+
+    /// Whether the faces and edges of vertex `v` order into one
+    /// counter-clockwise fan, closed or between two boundary edges
+    /// (OpenSubdiv's `Vtr::Level::orderVertexFacesAndEdges`, whose failure
+    /// makes a vertex non-manifold): walking from the first face (interior)
+    /// or from the leading boundary edge, across the edge before the vertex
+    /// in each face, every edge is met once before the walk closes.
+    pub fn orders_around(&self, v: usize) -> bool {
+        let corners = self.vertex_corners(v);
+        let edges = self.vertex_edges(v);
+        let (nf, ne) = (corners.len(), edges.len());
+        if nf == 0 || ne < 2 || ne > nf + 1 {
+            return false;
+        }
+        let face_edge = |f: usize, k: usize| self.corner_edge[self.face_start[f] as usize + k];
+        let position = |f: usize| self.face(f).iter().position(|&x| x as usize == v);
+        let edge_faces = |e: u32| {
+            self.edge_corners(e as usize)
+                .iter()
+                .map(|&c| self.corner_face[c as usize] as usize)
+        };
+        let (mut f, mut k, mut e_start);
+        if ne == nf {
+            f = self.corner_face[corners[0] as usize] as usize;
+            k = position(f).unwrap_or(0);
+            e_start = face_edge(f, k);
+        } else {
+            let mut start = None;
+            for &e in edges {
+                let mut faces = edge_faces(e);
+                if let (Some(g), None) = (faces.next(), faces.next()) {
+                    let kg = position(g).unwrap_or(0);
+                    start = Some((g, kg, e));
+                    if face_edge(g, kg) == e {
+                        break;
+                    }
+                }
+            }
+            let Some(s) = start else { return false };
+            (f, k, e_start) = s;
+        }
+        let e_first = e_start;
+        let (mut e_count, mut f_count) = (1, 1);
+        while e_count < ne {
+            let n = self.face(f).len();
+            let e_next = face_edge(f, if k == 0 { n - 1 } else { k - 1 });
+            if e_next == e_start || e_next == e_first {
+                return false;
+            }
+            e_count += 1;
+            if f_count < nf {
+                let faces: Vec<usize> = edge_faces(e_next).collect();
+                match faces[..] {
+                    [] => return false,
+                    [g] if g == f => return false,
+                    _ => {}
+                }
+                f = faces[usize::from(faces[0] == f)];
+                k = (0..self.face(f).len())
+                    .position(|i| face_edge(f, i) == e_next)
+                    .unwrap_or(0);
+                f_count += 1;
+            }
+            e_start = e_next;
+        }
+        true
     }
 }

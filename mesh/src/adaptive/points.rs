@@ -16,7 +16,12 @@ pub enum Key {
     Vertex(u32),
     /// The child of an edge (its end points, smaller first).
     Edge(u32, u32),
-    /// The child of a face (its points, sorted).
+    /// The child of the `k`-th (`k ≥ 1`) other edge between the same two
+    /// points (end points smaller first, then `k`): a base-level edge a face
+    /// runs twice, or a further degenerate edge, as OpenSubdiv makes them.
+    EdgeInstance(u32, u32, u32),
+    /// The child of a face (its points in order, from the rotation that
+    /// reads smallest).
     Face(Vec<u32>),
     /// `2·a − b`: a phantom point beyond an infinitely sharp edge.
     Mirror(u32, u32),

@@ -22,8 +22,9 @@
 //!   with `w` the fractional weight ([`super::crease::fractional_weight`]).
 
 use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, vertex_rule, Rule};
-use super::level::Level;
+use super::level::{Edges, Faces, Level};
 use super::points::{Key, Points};
+use alloc::vec;
 use alloc::vec::Vec;
 use hashbrown::HashMap;
 
@@ -92,8 +93,14 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
     let mut fchild: HashMap<usize, u32> = HashMap::new();
     let mut point: Vec<u32> = Vec::new();
     let mut vsharp: Vec<f32> = Vec::new();
-    let mut sharp_edges: HashMap<(u32, u32), f32> = HashMap::new();
-    let mut child_faces: Vec<[u32; 4]> = Vec::new();
+    let mut faces_out = Faces {
+        face_start: vec![0],
+        ..Faces::default()
+    };
+    let mut edges_out = Edges::default();
+    // Child edges by origin: (parent edge, end) and (parent face, corner).
+    let mut edge_child: HashMap<(usize, usize), u32> = HashMap::new();
+    let mut face_child: HashMap<(usize, usize), u32> = HashMap::new();
     let mut holes = Vec::new();
     let mut first = Vec::with_capacity(faces.len());
 
@@ -101,6 +108,12 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
         point.push(p);
         vsharp.push(s);
         (point.len() - 1) as u32
+    };
+    let new_edge = |ends: [u32; 2], s: f32, nm: bool, edges: &mut Edges| -> u32 {
+        edges.vertices.push(ends);
+        edges.sharpness.push(s);
+        edges.nonmanifold.push(nm);
+        (edges.vertices.len() - 1) as u32
     };
     for &f in faces {
         let f = f as usize;
@@ -118,37 +131,72 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
         }
         for c in m.face_corners(f) {
             let e = m.corner_edge[c as usize] as usize;
-            if echild.contains_key(&e) {
-                continue;
-            }
-            let p = edge_point(m, e, rules, points);
-            let mid = new_vertex(p, 0.0, &mut point, &mut vsharp);
-            echild.insert(e, mid);
-            let s = m.edge_sharpness[e];
-            if is_sharp(s) {
-                // Both ends are corners of f: their children exist.
-                for end in m.edge_vertices[e] {
-                    let cs = child_edge_sharpness(s, chaikin, around(m, end as usize));
-                    if is_sharp(cs) {
-                        let a = vchild[&(end as usize)];
-                        sharp_edges.insert((a.min(mid), a.max(mid)), cs);
-                    }
-                }
+            if !echild.contains_key(&e) {
+                let p = edge_point(m, e, rules, points);
+                echild.insert(e, new_vertex(p, 0.0, &mut point, &mut vsharp));
             }
         }
-        first.push(child_faces.len() as u32);
-        for c in m.face_corners(f) {
-            let v = m.corner_vertex[c as usize] as usize;
+        // The child edge of parent edge `e` at its end `end` (both ends
+        // are corners of f: their children exist).
+        let mut half = |e: usize, end: usize, edges: &mut Edges| -> u32 {
+            *edge_child.entry((e, end)).or_insert_with(|| {
+                let s = m.edge_sharpness[e];
+                let v = m.edge_vertices[e][end] as usize;
+                let cs = child_edge_sharpness(s, chaikin, around(m, v));
+                let cs = if is_sharp(cs) { cs } else { 0.0 };
+                new_edge([echild[&e], vchild[&v]], cs, m.edge_nonmanifold[e], edges)
+            })
+        };
+        // Which end of edge `e` corner vertex `v` is (`OpenSubdiv`'s
+        // `QuadRefinement::populateFaceEdgesFromParentFaces`: of a
+        // degenerate edge, the end after the corner for the edge leaving
+        // it, the one before for the edge reaching it).
+        let end_at = |e: usize, v: u32, leaving: bool| -> usize {
+            let [a, b] = m.edge_vertices[e];
+            if a == b {
+                usize::from(!leaving)
+            } else {
+                usize::from(a != v)
+            }
+        };
+        first.push((faces_out.face_start.len() - 1) as u32);
+        let n = m.face(f).len();
+        let start = m.face_start[f] as usize;
+        for j in 0..n {
+            let c = (start + j) as u32;
+            let v = m.corner_vertex[c as usize];
             let e_next = m.corner_edge[c as usize] as usize;
             let e_prev = m.corner_edge[m.prev(c) as usize] as usize;
-            child_faces.push([vchild[&v], echild[&e_next], fchild[&f], echild[&e_prev]]);
+            let jp = if j == 0 { n - 1 } else { j - 1 };
+            let face_fc = fchild[&f];
+            let mut across = |k: usize, e: usize, edges: &mut Edges| -> u32 {
+                *face_child
+                    .entry((f, k))
+                    .or_insert_with(|| new_edge([face_fc, echild[&e]], 0.0, false, edges))
+            };
+            let edges = [
+                half(e_next, end_at(e_next, v, true), &mut edges_out),
+                across(j, e_next, &mut edges_out),
+                across(jp, e_prev, &mut edges_out),
+                half(e_prev, end_at(e_prev, v, false), &mut edges_out),
+            ];
+            let verts = [
+                vchild[&(v as usize)],
+                echild[&e_next],
+                face_fc,
+                echild[&e_prev],
+            ];
+            let face = (faces_out.face_start.len() - 1) as u32;
+            faces_out.corner_vertex.extend_from_slice(&verts);
+            faces_out.corner_edge.extend_from_slice(&edges);
+            faces_out.corner_face.extend([face; 4]);
+            faces_out
+                .face_start
+                .push(faces_out.corner_vertex.len() as u32);
             holes.push(m.hole[f]);
         }
     }
-    let refs: Vec<&[u32]> = child_faces.iter().map(|q| &q[..]).collect();
-    let level = Level::new(&refs, point, vsharp, holes, |a, b| {
-        sharp_edges.get(&(a, b)).copied().unwrap_or(0.0)
-    });
+    let level = Level::from_parts(faces_out, edges_out, point, vsharp, holes);
     Child { level, first }
 }
 
@@ -161,8 +209,13 @@ fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
 
 /// The face point of `f`.
 pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
-    let mut key: Vec<u32> = m.face(f).iter().map(|&v| m.point[v as usize]).collect();
-    key.sort_unstable();
+    let ps: Vec<u32> = m.face(f).iter().map(|&v| m.point[v as usize]).collect();
+    let (ps, n) = (&ps, ps.len());
+    let rotation = |k: usize| (0..n).map(move |i| ps[(k + i) % n]);
+    let k = (0..n)
+        .min_by(|&x, &y| rotation(x).cmp(rotation(y)))
+        .unwrap_or(0);
+    let key = rotation(k).collect();
     points.get_or_make(Key::Face(key), || {
         let mut row = Row::new();
         add_centroid(m, f, 1.0, &mut row);
@@ -175,7 +228,10 @@ pub fn edge_point(m: &Level, e: usize, rules: Rules, points: &mut Points) -> u32
     let chaikin = rules.chaikin;
     let [a, b] = m.edge_vertices[e];
     let (pa, pb) = (m.point[a as usize], m.point[b as usize]);
-    let key = Key::Edge(pa.min(pb), pa.max(pb));
+    let key = match m.edge_instance[e] {
+        0 => Key::Edge(pa.min(pb), pa.max(pb)),
+        k => Key::EdgeInstance(pa.min(pb), pa.max(pb), k),
+    };
     points.get_or_make(key, || {
         let s = m.edge_sharpness[e];
         let mid = || {
