@@ -755,16 +755,25 @@ fn bad_meshes_fail_cleanly() {
         expect_failure(d, label, content.as_bytes(), &[], needle);
     }
     expect_failure(d, "not-utf8", b"v 0 0 0\n\xff\xfe\n", &[], "not UTF-8");
-    // A pole too deep for the largest net: the evaluator's capacity error
-    // (valence 32·2^16 = 2^21 beyond the library's limit).
+    // A pole too deep for the largest net: by default refused for its size
+    // (2·4·32·(2^16 − 1) ≈ 1.7e7 C²PS patches); allowed that many, the
+    // evaluator's capacity error (valence 32·2^16 = 2^21 beyond the
+    // library's limit).
     let globe = obj_text(&samples::globe(32, 7), Corners::Plain);
+    expect_failure(
+        d,
+        "too-large",
+        globe.as_bytes(),
+        &["--depth", "16"],
+        "patches, more than --max-patches 2000000",
+    );
     let max = capdiv_mesh::evaluate::MAX_POLAR_VALENCE;
     assert!(32 << 16 > max);
     expect_failure(
         d,
         "capacity",
         globe.as_bytes(),
-        &["--depth", "16"],
+        &["--depth", "16", "--max-patches", "100000000"],
         &format!("at most {max} is supported"),
     );
     // Options.
