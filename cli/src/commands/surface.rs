@@ -178,8 +178,17 @@ fn produce<R: Scalar>(
             (to_json(&out, args.pretty), report)
         }
         SurfaceFormat::Step => {
+            // f32 patches are joined where the f64 ones are (see
+            // `step::brep_guided`).
+            let guide = if precision == "f32" {
+                Some(build_scheme::<f64>(
+                    name, mesh, args.depth, tables, "f64", cc,
+                )?)
+            } else {
+                None
+            };
             let mut report = report(name, &surface.summary, None, naming);
-            let (text, line) = step_text(&surface, mesh, name, args, precision);
+            let (text, line) = step_text(&surface, guide.as_ref(), mesh, name, args, precision);
             report.push_str(&line);
             (text.into_bytes(), report)
         }
@@ -232,11 +241,13 @@ fn produce<R: Scalar>(
     })
 }
 
-/// The STEP file of a surface ([`step`]) and its summary line
+/// The STEP file of a surface ([`step`]; with a `guide`, the same surface
+/// in f64, joined where the guide's faces join) and its summary line
 /// `  step         F faces (P patches, H hole fills), E edges, V vertices;
 /// closed shell|open shell (N free edges); volume X; T ms`.
 pub fn step_text<R: Scalar>(
     surface: &Surface<R>,
+    guide: Option<&Surface<f64>>,
     mesh: &MeshInput,
     name: &str,
     args: &SurfaceArgs,
@@ -246,7 +257,15 @@ pub fn step_text<R: Scalar>(
     let faces = step::faces(&surface.patches);
     let (tol, _) = weld_tolerance(mesh, WELD_F64);
     let size = step::model_size(&faces);
-    let b = step::brep(faces, tol, step::UNCERTAINTY * size);
+    let b = match guide {
+        Some(g) => step::brep_guided(
+            faces,
+            &step::faces(&g.patches),
+            tol,
+            step::UNCERTAINTY * size,
+        ),
+        None => step::brep(faces, tol, step::UNCERTAINTY * size),
+    };
     let file_name = args
         .output
         .as_ref()

@@ -261,6 +261,9 @@ pub struct Edge {
     pub curve: Vec<[f64; 3]>,
     /// Faces using it.
     pub uses: usize,
+    /// The boundary piece its curve is (numbered face by face, edge by
+    /// edge, the halves of a split edge in order).
+    pub piece: usize,
 }
 
 /// The B-rep's topology: welded vertices, shared edges, one loop per face.
@@ -270,6 +273,9 @@ pub struct Brep {
     pub faces: Vec<StepFace>,
     /// Vertex positions.
     pub vertices: Vec<[f64; 3]>,
+    /// Per vertex: the piece end it was taken from (`2k`: start of piece
+    /// `k`, `2k + 1`: its end).
+    pub vertex_end: Vec<usize>,
     /// Edges.
     pub edges: Vec<Edge>,
     /// Per face: its loop, `(edge, same direction as the edge's curve)`.
@@ -300,39 +306,54 @@ impl Brep {
     }
 }
 
+/// The boundary pieces of `faces`, face by face, edge by edge (halves of a
+/// `finer` edge in order): `(face, control points in the loop's direction)`.
+fn pieces(faces: &[StepFace]) -> Vec<(usize, Vec<[f64; 3]>)> {
+    let mut out = Vec::new();
+    for (f, face) in faces.iter().enumerate() {
+        for e in 0..4u8 {
+            let c = face.surface.edge(e);
+            if face.finer & (1 << e) != 0 {
+                let (a, b) = split_half(&c);
+                out.push((f, a));
+                out.push((f, b));
+            } else {
+                out.push((f, c));
+            }
+        }
+    }
+    out
+}
+
+/// The end points of `pieces`: `2k` the start and `2k + 1` the end of piece `k`.
+fn piece_ends(pieces: &[(usize, Vec<[f64; 3]>)]) -> Vec<[f64; 3]> {
+    pieces
+        .iter()
+        .flat_map(|(_, c)| [c[0], c[c.len() - 1]])
+        .collect()
+}
+
 /// Builds the topology of `faces`: boundary pieces (whole edges, or halves
 /// of the `finer` ones) whose end points weld within `tol` share vertices;
 /// pieces with the same two vertices and midpoints within `mid_tol` share an
 /// edge (each edge at most two faces); pieces whose control points all lie
 /// within `tol` of their start are collapsed.
 pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
-    // Pieces: (face, curve in loop direction).
-    let mut pieces: Vec<(usize, Vec<[f64; 3]>)> = Vec::new();
-    for (f, face) in faces.iter().enumerate() {
-        for e in 0..4u8 {
-            let c = face.surface.edge(e);
-            if face.finer & (1 << e) != 0 {
-                let (a, b) = split_half(&c);
-                pieces.push((f, a));
-                pieces.push((f, b));
-            } else {
-                pieces.push((f, c));
-            }
-        }
-    }
-    let ends: Vec<capdiv::Point3<f64>> = pieces
-        .iter()
-        .flat_map(|(_, c)| [c[0], c[c.len() - 1]])
+    let pieces = pieces(&faces);
+    let ends: Vec<capdiv::Point3<f64>> = piece_ends(&pieces)
+        .into_iter()
         .map(capdiv::Point3)
         .collect();
     let rep = weld::representatives(&ends, tol);
     let mut vertex_of = vec![usize::MAX; ends.len()];
     let mut vertices = Vec::new();
+    let mut vertex_end = Vec::new();
     for k in 0..ends.len() {
         let r = rep[k] as usize;
         if vertex_of[r] == usize::MAX {
             vertex_of[r] = vertices.len();
             vertices.push(ends[r].0);
+            vertex_end.push(r);
         }
         vertex_of[k] = vertex_of[r];
     }
@@ -372,6 +393,7 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
                     end: b,
                     curve: c.clone(),
                     uses: 1,
+                    piece: k,
                 });
             }
         }
@@ -379,10 +401,38 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
     Brep {
         faces,
         vertices,
+        vertex_end,
         edges,
         loops,
         collapsed,
     }
+}
+
+/// [`brep`] with the topology of `guide` (the same patches in a higher
+/// precision: where `f32` patches of a deep cap lie closer together than
+/// `f32` rounding lets a tolerance tell apart, the `f64` ones weld exactly)
+/// and the geometry of `faces`: each vertex and edge curve is taken from the
+/// same corner and boundary piece of `faces`. Without a matching guide (not
+/// the same faces, degrees and split edges) it is `brep(faces, …)`.
+pub fn brep_guided(faces: Vec<StepFace>, guide: &[StepFace], tol: f64, mid_tol: f64) -> Brep {
+    let matches = guide.len() == faces.len()
+        && guide.iter().zip(&faces).all(|(g, f)| {
+            g.finer == f.finer && g.kind == f.kind && g.surface.degree == f.surface.degree
+        });
+    if !matches {
+        return brep(faces, tol, mid_tol);
+    }
+    let mut b = brep(guide.to_vec(), tol, mid_tol);
+    let pieces = pieces(&faces);
+    let ends = piece_ends(&pieces);
+    for (v, &k) in b.vertices.iter_mut().zip(&b.vertex_end) {
+        *v = ends[k];
+    }
+    for e in &mut b.edges {
+        e.curve = pieces[e.piece].1.clone();
+    }
+    b.faces = faces;
+    b
 }
 
 /// The enclosed volume `⅓ ∬ P · (P_u × P_v) du dv` summed over the faces
@@ -813,6 +863,28 @@ mod tests {
                 .parse()
                 .unwrap();
             assert!((1..=defined).contains(&n));
+        }
+    }
+
+    #[test]
+    fn rounded_patches_are_joined_where_their_guide_joins() {
+        // Each face moved by its own 1e-9: no weld within 1e-12.
+        let mut faces = cube();
+        for (k, f) in faces.iter_mut().enumerate() {
+            for p in &mut f.surface.net {
+                p[0] += k as f64 * 1e-9;
+            }
+        }
+        assert!(!brep(faces.clone(), 1e-12, 1e-9).is_closed());
+        let b = brep_guided(faces.clone(), &cube(), 1e-12, 1e-9);
+        assert!(b.is_closed());
+        assert_eq!((b.vertices.len(), b.edges.len()), (8, 12));
+        // The geometry is the rounded faces'.
+        assert_eq!(b.faces, faces);
+        for e in &b.edges {
+            let (f, c) = &pieces(&faces)[e.piece];
+            assert_eq!(&e.curve, c);
+            assert!(faces[*f].surface.net.contains(&e.curve[0]));
         }
     }
 

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# `capdiv surface --format step` checked by OpenCascade, for CI and by hand.
+# Installs cadquery-ocp (PyPI, pinned) in a virtual environment
+# ($STEP_VENV, default ~/.cache/capdiv/step-venv), then:
+#   1. builds the CLI (release profile) and writes the demo meshes
+#      (`capdiv demo`) and the generated ones (scripts/exchange/meshes.py:
+#      an open tube, a bowl with a pole, an open box with extraordinary
+#      points, an icosahedron, a sphere with triangle-fan poles);
+#   2. per mesh: `capdiv surface --format step` (keeping the summary: counts,
+#      shell, capdiv's own Gauss-quadrature volume) and `--format json` (the
+#      patches and caps);
+#   3. scripts/exchange/check_step.py on each: STEPControl_Reader reads it,
+#      BRepCheck_Analyzer finds it valid, faces/edges/vertices as written,
+#      every patch face equals capdiv's patch (1e-9 of the size), hole fills
+#      ruled to a cap's limit point; closed: a solid without free edges whose
+#      GProp volume is capdiv's (1e-6 relative); open: free edges exactly on
+#      the input's boundary limit curve and covering it.
+# Env: STEP_DEPTH (default 4; the hand runs one less). Prints its run time and
+# `N passed, N failed`.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+start=$(date +%s)
+step() { echo "== step: $* ($(( $(date +%s) - start )) s)"; }
+
+step "tools"
+venv=${STEP_VENV:-$HOME/.cache/capdiv/step-venv}
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/pip" install --quiet --disable-pip-version-check cadquery-ocp==8.0.1.1.0
+py="$venv/bin/python"
+
+step "build the CLI"
+cargo build --quiet --release -p capdiv-cli
+bin="${CARGO_TARGET_DIR:-$root/target}/release/capdiv"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$bin" demo --out "$work/demo" >/dev/null
+python3 scripts/exchange/meshes.py "$work/gen"
+depth=${STEP_DEPTH:-4}
+
+# name  file  depth  extra options  (open meshes: checked against their OBJ's boundary)
+cases=(
+  "cube $work/demo/cube.json $depth"
+  "globe $work/demo/globe.json $depth"
+  "mushroom $work/demo/mushroom.json $depth"
+  "rounded-cube $work/demo/rounded-cube.json $depth"
+  "two-beam-corner $work/demo/two-beam-corner.json $depth"
+  "hand $work/demo/hand.json $(( depth > 1 ? depth - 1 : 1 ))"
+  "icosahedron $work/gen/icosahedron.obj $depth"
+  "pole-sphere $work/gen/pole-sphere.obj $depth"
+  "tube $work/gen/tube.obj $depth"
+  "bowl $work/gen/bowl.obj $depth"
+  "open-box $work/gen/open-box.obj $depth"
+  "globe-f32 $work/demo/globe.json $depth --precision f32"
+  "cube-cc $work/demo/cube.json $depth --scheme catmull-clark"
+)
+
+step "capdiv surface --format step|json, check_step.py"
+passed=0
+failed=0
+for c in "${cases[@]}"; do
+  read -r name file d extra <<< "$c"
+  # shellcheck disable=SC2086 # extra options split on purpose
+  "$bin" surface --depth "$d" $extra --format step -o "$work/$name.step" "$file" 2> "$work/$name.log"
+  # shellcheck disable=SC2086
+  "$bin" surface --depth "$d" $extra --format json -o "$work/$name.json" "$file" 2> /dev/null
+  args=("$work/$name.step" "$work/$name.json" "$work/$name.log")
+  case "$file" in *.obj) args+=(--mesh "$file") ;; esac
+  case "$extra" in *f32*) args+=(--f32) ;; esac
+  if "$py" scripts/exchange/check_step.py "${args[@]}"; then
+    passed=$(( passed + 1 ))
+  else
+    failed=$(( failed + 1 ))
+    sed -n '/^  step/p' "$work/$name.log"
+  fi
+done
+
+step "done"
+echo "ci-step: $(( $(date +%s) - start )) s"
+echo "step: $passed passed, $failed failed"
+[ "$failed" -eq 0 ]
