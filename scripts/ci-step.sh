@@ -75,6 +75,29 @@ for c in "${cases[@]}"; do
   fi
 done
 
+step "check_step.py rejects broken files"
+# The cube's file with one face dropped from its shell, and with one interior
+# control point of the first patch's surface moved by 1e-6: both must fail.
+python3 - "$work/cube.step" "$work/broken" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+shell = re.search(r"CLOSED_SHELL\('',\((#\d+),", text)
+open(sys.argv[2] + "-face.step", "w").write(text.replace(shell[0], shell[0][: -len(shell[1]) - 1]))
+surface = re.search(r"B_SPLINE_SURFACE_WITH_KNOTS\('',\d,\d,\(\((?:#\d+,)+#\d+\),\(#\d+,(#\d+),", text)
+point = re.search("\n" + surface[1] + r"=CARTESIAN_POINT\('',\(([^,]+),", text)
+x = float(point[1].replace("E", "e")) + 1e-6
+moved = point[0].replace(point[1], repr(x).replace("e", "E"), 1)
+open(sys.argv[2] + "-point.step", "w").write(text.replace(point[0], moved))
+PY
+for broken in face point; do
+  if "$py" scripts/exchange/check_step.py "$work/broken-$broken.step" "$work/cube.json" "$work/cube.log"; then
+    echo "check_step.py accepted broken-$broken.step"
+    failed=$(( failed + 1 ))
+  else
+    passed=$(( passed + 1 ))
+  fi
+done
+
 step "done"
 echo "ci-step: $(( $(date +%s) - start )) s"
 echo "step: $passed passed, $failed failed"

@@ -10,7 +10,10 @@ read back as the f32 values the STEP file holds exactly); FILE.log is the summar
 face, edge and vertex counts, the shell, the volume capdiv computed by Gauss
 quadrature over the patches). Checks, each failing with a one-line reason:
 
-1. STEPControl_Reader reads the file (IFSelect_RetDone) and transfers a shape;
+1. STEPControl_Reader reads the file (IFSelect_RetDone) and its load check
+   (each entity instance's name and parameters read against OpenCascade's
+   AP214 schema: known entity, parameter count and types) has neither a
+   fail nor a warning; it transfers a shape;
 2. BRepCheck_Analyzer says the shape is valid;
 3. the faces, the (non-degenerate) edges and the vertices are as many as
    written;
@@ -201,6 +204,11 @@ def main():
     reader = STEPControl_Reader()
     if reader.ReadFile(step_path) != IFSelect_RetDone:
         fail("STEPControl_Reader could not read the file")
+    checks = reader.WS().ModelCheckList()
+    if not checks.IsEmpty(True):
+        fail("the load check has fails (see reader.PrintCheckLoad)")
+    if not checks.IsEmpty(False):
+        fail("the load check has warnings (see reader.PrintCheckLoad)")
     if reader.TransferRoots() < 1:
         fail("no root transferred")
     shape = reader.OneShape()
@@ -328,7 +336,7 @@ def main():
             f"off, length {rel:.2g} relative"
         )
     print(
-        f"check_step: {step_path}: read {read_s:.2f} s, valid; {len(faces)} faces, {len(edges)} edges, "
+        f"check_step: {step_path}: read {read_s:.2f} s, load check clean, valid; {len(faces)} faces, {len(edges)} edges, "
         f"{len(vertices)} vertices; patch error {worst / size:.2g}, fill error {fill_worst / size:.2g} "
         f"of size {size:.6g}{extra}"
     )
