@@ -15,8 +15,10 @@
 #      ruled to a cap's limit point; closed: a solid without free edges whose
 #      GProp volume is capdiv's (1e-6 relative); open: free edges exactly on
 #      the input's boundary limit curve and covering it.
-# Env: STEP_DEPTH (default 4; the hand runs one less). Prints its run time and
-# `N passed, N failed`.
+# Env: STEP_DEPTH (default 4; the hand runs one less); STEP_SCREENSHOT=path.png
+# renders the mushroom's file as OpenCascade reads it (scripts/exchange/
+# render_step.py; docs/img/step-occ.png is STEP_DEPTH=3). Prints its run time
+# and `N passed, N failed`.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -97,6 +99,11 @@ for broken in face point; do
     passed=$(( passed + 1 ))
   fi
 done
+
+if [ -n "${STEP_SCREENSHOT:-}" ]; then
+  step "render the mushroom"
+  "$py" scripts/exchange/render_step.py "$work/mushroom.step" "$STEP_SCREENSHOT" 800 600 2>&1 | grep -v WARN
+fi
 
 step "done"
 echo "ci-step: $(( $(date +%s) - start )) s"

@@ -114,7 +114,7 @@ def parse_log(path):
     text = open(path).read()
     m = re.search(
         r"^  step +(\d+) faces? \((\d+) patch(?:es)?, (\d+) hole fills?\), (\d+) edges?, "
-        r"(\d+) vert(?:ex|ices); (closed|open) shell[^;]*; volume ([^;]+);",
+        r"(\d+) vert(?:ex|ices); (closed|open) shell[^;]*(?:; volume ([^;]+))?;",
         text,
         re.M,
     )
@@ -127,7 +127,7 @@ def parse_log(path):
         "edges": int(m[4]),
         "vertices": int(m[5]),
         "closed": m[6] == "closed",
-        "volume": float(m[7]),
+        "volume": float(m[7]) if m[7] else None,
     }
 
 

@@ -22,7 +22,8 @@
 //! - `step`: the exact patches as an ISO 10303-21 B-rep of B-spline faces,
 //!   each cap's last hole closed by collapsed ruled patches
 //!   ([`crate::export::step`]); the summary adds the face, edge and vertex
-//!   counts, the shell, and the volume the faces enclose (Gauss quadrature).
+//!   counts, the shell, and for a closed shell the volume it encloses (Gauss
+//!   quadrature over the faces).
 //!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
@@ -244,7 +245,7 @@ fn produce<R: Scalar>(
 /// The STEP file of a surface ([`step`]; with a `guide`, the same surface
 /// in f64, joined where the guide's faces join) and its summary line
 /// `  step         F faces (P patches, H hole fills), E edges, V vertices;
-/// closed shell|open shell (N free edges); volume X; T ms`.
+/// closed shell; volume X; T ms` (or `open shell (N free edges); T ms`).
 pub fn step_text<R: Scalar>(
     surface: &Surface<R>,
     guide: Option<&Surface<f64>>,
@@ -284,7 +285,7 @@ pub fn step_text<R: Scalar>(
     let text = step::write(&b, &header);
     let patches = surface.patches.len();
     let shell = if b.is_closed() {
-        "closed shell".to_string()
+        format!("closed shell; volume {}", step::volume(&b.faces))
     } else {
         format!(
             "open shell ({})",
@@ -292,13 +293,12 @@ pub fn step_text<R: Scalar>(
         )
     };
     let line = format!(
-        "  step         {} ({} patches, {} hole fills), {}, {}; {shell}; volume {}; {:.1} ms\n",
+        "  step         {} ({} patches, {} hole fills), {}, {}; {shell}; {:.1} ms\n",
         count(b.faces.len(), "face", "faces"),
         patches,
         b.faces.len() - patches,
         count(b.edges.len(), "edge", "edges"),
         count(b.vertices.len(), "vertex", "vertices"),
-        step::volume(&b.faces),
         start.elapsed().as_secs_f64() * 1e3
     );
     (text, line)
