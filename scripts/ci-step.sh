@@ -13,7 +13,7 @@
 #      BRepCheck_Analyzer finds it valid, faces/edges/vertices as written,
 #      every patch face equals capdiv's patch (1e-9 of the size), hole fills
 #      ruled to a cap's limit point; closed: a solid without free edges whose
-#      GProp volume is capdiv's (1e-6 relative); open: free edges exactly on
+#      GProp volume is capdiv's (1e-9 relative, f32 1e-6); open: free edges on
 #      the input's boundary limit curve and covering it.
 # Env: STEP_DEPTH (default 4; the hand runs one less); STEP_SCREENSHOT=path.png
 # renders the mushroom's file as OpenCascade reads it (scripts/exchange/

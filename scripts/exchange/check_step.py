@@ -27,7 +27,8 @@ quadrature over the patches). Checks, each failing with a one-line reason:
    within 1e-9 of the model size;
 6. a closed shell (the log says so) is a solid with no free edge and no edge
    of more than two faces, and OpenCascade's volume (GProp, adaptive
-   integration to 1e-9) equals capdiv's within 1e-6 relative;
+   integration to 1e-9) equals capdiv's within 1e-9 relative (1e-6 for
+   --f32);
 7. an open shell: the free edges lie on the input's boundary limit curve,
    which for a boundary loop of smooth boundary vertices is the periodic
    uniform cubic B-spline of the loop's vertices (Catmull-Clark's boundary
@@ -71,7 +72,8 @@ from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopoDS import TopoDS
 
 SURFACE_TOL = 1e-9  # of the model size
-VOLUME_TOL = 1e-6  # relative
+VOLUME_TOL = 1e-9  # relative (f64: measured agreement 2e-13 or better)
+VOLUME_TOL_F32 = 1e-6  # relative (f32 corners: gaps of f32 round-off)
 LENGTH_TOL = 1e-7  # relative
 
 
@@ -301,7 +303,7 @@ def main():
         BRepGProp.VolumeProperties_s(shape, props, 1e-9)
         occ = props.Mass()
         rel = abs(occ - want["volume"]) / abs(want["volume"])
-        if rel > VOLUME_TOL:
+        if rel > (VOLUME_TOL_F32 if "--f32" in sys.argv else VOLUME_TOL):
             fail(f"volume {occ!r} (OpenCascade) vs {want['volume']!r} (capdiv): {rel:.3g} relative")
         extra = f"; volume {occ:.12g} vs capdiv {want['volume']:.12g} ({rel:.2g} relative)"
     else:

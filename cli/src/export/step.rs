@@ -15,8 +15,13 @@
 //!   half its size ([`PatchRecord::finer`]) is split at its midpoint: the
 //!   face's loop then has more than four edges, each piece's curve being the
 //!   half of the Bézier boundary curve (de Casteljau at ½).
-//! - Each edge's curve is a `B_SPLINE_CURVE_WITH_KNOTS`: the boundary curve
-//!   (or half of it) of the first face that uses it, in Bézier form.
+//! - Each edge's curve is a `SURFACE_CURVE`: its 3D curve a
+//!   `B_SPLINE_CURVE_WITH_KNOTS`, the boundary curve (or half of it) of the
+//!   first face that uses it in Bézier form, and one `PCURVE` per face using
+//!   it: the straight segment of that face's `(u, v)` square (a degree-1
+//!   B-spline) that the face's surface maps onto the curve with the same
+//!   parameter. A reader then has each face's exact parameter domain and
+//!   need not project curves onto surfaces.
 //!   Boundary pieces whose control points all weld into one point (a polar
 //!   patch's pole side, the limit-point side of a hole fill) are collapsed
 //!   edges and are left out of the loop (a reader adds its degenerate edge).
@@ -264,6 +269,10 @@ pub struct Edge {
     /// The boundary piece its curve is (numbered face by face, edge by
     /// edge, the halves of a split edge in order).
     pub piece: usize,
+    /// Per face using it: the face and the points of its `(u, v)` square
+    /// where the curve starts and ends (the curve is that straight segment
+    /// of the square mapped by the face's surface, with the same parameter).
+    pub pcurves: Vec<(usize, [[f64; 2]; 2])>,
 }
 
 /// The B-rep's topology: welded vertices, shared edges, one loop per face.
@@ -306,19 +315,50 @@ impl Brep {
     }
 }
 
+/// A boundary piece of a face: a whole edge, or half of a `finer` one.
+#[derive(Clone, Debug)]
+struct Piece {
+    /// The face.
+    face: usize,
+    /// Its edge (0: `v = 0`, 1: `u = 1`, 2: `v = 1`, 3: `u = 0`).
+    edge: u8,
+    /// The part of the edge, as the edge's own parameter in the loop's
+    /// direction: `[0, 1]`, `[0, ½]` or `[½, 1]`.
+    span: [f64; 2],
+    /// Control points in the loop's direction.
+    curve: Vec<[f64; 3]>,
+}
+
+/// The point `(u, v)` of a face's square at parameter `s` of its edge `e`,
+/// `s` running in the loop's direction.
+fn edge_uv(e: u8, s: f64) -> [f64; 2] {
+    match e & 3 {
+        0 => [s, 0.0],
+        1 => [1.0, s],
+        2 => [1.0 - s, 1.0],
+        _ => [0.0, 1.0 - s],
+    }
+}
+
 /// The boundary pieces of `faces`, face by face, edge by edge (halves of a
-/// `finer` edge in order): `(face, control points in the loop's direction)`.
-fn pieces(faces: &[StepFace]) -> Vec<(usize, Vec<[f64; 3]>)> {
+/// `finer` edge in order).
+fn pieces(faces: &[StepFace]) -> Vec<Piece> {
     let mut out = Vec::new();
     for (f, face) in faces.iter().enumerate() {
         for e in 0..4u8 {
             let c = face.surface.edge(e);
+            let piece = |span, curve| Piece {
+                face: f,
+                edge: e,
+                span,
+                curve,
+            };
             if face.finer & (1 << e) != 0 {
                 let (a, b) = split_half(&c);
-                out.push((f, a));
-                out.push((f, b));
+                out.push(piece([0.0, 0.5], a));
+                out.push(piece([0.5, 1.0], b));
             } else {
-                out.push((f, c));
+                out.push(piece([0.0, 1.0], c));
             }
         }
     }
@@ -326,10 +366,10 @@ fn pieces(faces: &[StepFace]) -> Vec<(usize, Vec<[f64; 3]>)> {
 }
 
 /// The end points of `pieces`: `2k` the start and `2k + 1` the end of piece `k`.
-fn piece_ends(pieces: &[(usize, Vec<[f64; 3]>)]) -> Vec<[f64; 3]> {
+fn piece_ends(pieces: &[Piece]) -> Vec<[f64; 3]> {
     pieces
         .iter()
-        .flat_map(|(_, c)| [c[0], c[c.len() - 1]])
+        .flat_map(|p| [p.curve[0], p.curve[p.curve.len() - 1]])
         .collect()
 }
 
@@ -361,8 +401,11 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
     let mut by_ends: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
     let mut loops = vec![Vec::new(); faces.len()];
     let mut collapsed = 0;
-    for (k, (f, c)) in pieces.iter().enumerate() {
+    for (k, piece) in pieces.iter().enumerate() {
+        let (f, c) = (&piece.face, &piece.curve);
         let (a, b) = (vertex_of[2 * k], vertex_of[2 * k + 1]);
+        // The piece's ends in its face's square, in the loop's direction.
+        let ends = piece.span.map(|s| edge_uv(piece.edge, s));
         if a == b && c.iter().all(|&p| dist(p, c[0]) <= tol) {
             collapsed += 1;
             continue;
@@ -384,6 +427,10 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
                     dist(curve_eval(&edges[e].curve, 0.25).0, curve_eval(c, 0.25).0) <= mid_tol
                 };
                 loops[*f].push((e, same));
+                let [p, q] = ends;
+                edges[e]
+                    .pcurves
+                    .push((*f, if same { [p, q] } else { [q, p] }));
             }
             None => {
                 list.push(edges.len());
@@ -394,6 +441,7 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
                     curve: c.clone(),
                     uses: 1,
                     piece: k,
+                    pcurves: vec![(*f, ends)],
                 });
             }
         }
@@ -429,7 +477,7 @@ pub fn brep_guided(faces: Vec<StepFace>, guide: &[StepFace], tol: f64, mid_tol: 
         *v = ends[k];
     }
     for e in &mut b.edges {
-        e.curve = pieces[e.piece].1.clone();
+        e.curve = pieces[e.piece].curve.clone();
     }
     b.faces = faces;
     b
@@ -565,6 +613,30 @@ impl Data {
         ))
     }
 
+    /// `PCURVE`: the straight segment `uv[0] → uv[1]` (parameter 0 to 1)
+    /// of a surface's parameter square, as a `DEFINITIONAL_REPRESENTATION`
+    /// of a degree-1 `B_SPLINE_CURVE_WITH_KNOTS` in the context `ctx`.
+    fn pcurve(&mut self, surface: usize, uv: [[f64; 2]; 2], ctx: usize) -> usize {
+        let ids: Vec<String> = uv
+            .iter()
+            .map(|p| {
+                let mut b = String::from("CARTESIAN_POINT('',(");
+                real(&mut b, p[0]);
+                b.push(',');
+                real(&mut b, p[1]);
+                b.push_str("))");
+                format!("#{}", self.add(&b))
+            })
+            .collect();
+        let line = self.add(&format!(
+            "B_SPLINE_CURVE_WITH_KNOTS('',1,({}),.POLYLINE_FORM.,.F.,.F.,(2,2),(0.,1.),\
+             .UNSPECIFIED.)",
+            ids.join(",")
+        ));
+        let rep = self.add(&format!("DEFINITIONAL_REPRESENTATION('',(#{line}),#{ctx})"));
+        self.add(&format!("PCURVE('',#{surface},#{rep})"))
+    }
+
     /// `B_SPLINE_SURFACE_WITH_KNOTS`: a tensor Bézier patch as a B-spline
     /// surface, `control_points_list[i][j] = b_ij` (`i` along `u`).
     fn surface(&mut self, s: &Bezier) -> usize {
@@ -679,7 +751,13 @@ pub fn write(b: &Brep, h: &Header) -> String {
          GLOBAL_UNIT_ASSIGNED_CONTEXT((#{length},#{angle},#{solid_angle}))\
          REPRESENTATION_CONTEXT('',''))"
     ));
-    // Topology and geometry.
+    // The faces' parameter squares (for the edges' PCURVEs).
+    let uv_ctx = d.add(
+        "(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()\
+         REPRESENTATION_CONTEXT('2D SPACE',''))",
+    );
+    // Geometry, then topology.
+    let surface: Vec<usize> = b.faces.iter().map(|f| d.surface(&f.surface)).collect();
     let vertex: Vec<usize> = b
         .vertices
         .iter()
@@ -693,8 +771,17 @@ pub fn write(b: &Brep, h: &Header) -> String {
         .iter()
         .map(|e| {
             let c = d.curve(&e.curve);
+            let pcurves: Vec<String> = e
+                .pcurves
+                .iter()
+                .map(|&(f, uv)| format!("#{}", d.pcurve(surface[f], uv, uv_ctx)))
+                .collect();
+            let sc = d.add(&format!(
+                "SURFACE_CURVE('',#{c},({}),.CURVE_3D.)",
+                pcurves.join(",")
+            ));
             d.add(&format!(
-                "EDGE_CURVE('',#{},#{},#{c},.T.)",
+                "EDGE_CURVE('',#{},#{},#{sc},.T.)",
                 vertex[e.start], vertex[e.end]
             ))
         })
@@ -713,7 +800,7 @@ pub fn write(b: &Brep, h: &Header) -> String {
             .collect();
         let lp = d.add(&format!("EDGE_LOOP('',({}))", oriented.join(",")));
         let bound = d.add(&format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
-        let surface = d.surface(&face.surface);
+        let surface = surface[f];
         let label = match face.kind {
             FaceKind::Patch(k) => format!("patch {k}"),
             FaceKind::HoleFill { patch, edge } => format!("hole fill {patch}.{edge}"),
@@ -855,6 +942,8 @@ mod tests {
             6
         );
         assert_eq!(step.matches("=CLOSED_SHELL(").count(), 1);
+        assert_eq!(step.matches("=SURFACE_CURVE(").count(), 12);
+        assert_eq!(step.matches("=PCURVE(").count(), 24);
         assert_eq!(step.matches("=MANIFOLD_SOLID_BREP(").count(), 1);
         // Every reference points at an instance written.
         let defined = step.matches("\n#").count();
@@ -882,10 +971,38 @@ mod tests {
         // The geometry is the rounded faces'.
         assert_eq!(b.faces, faces);
         for e in &b.edges {
-            let (f, c) = &pieces(&faces)[e.piece];
-            assert_eq!(&e.curve, c);
-            assert!(faces[*f].surface.net.contains(&e.curve[0]));
+            let piece = &pieces(&faces)[e.piece];
+            assert_eq!(e.curve, piece.curve);
+            assert!(faces[piece.face].surface.net.contains(&e.curve[0]));
         }
+    }
+
+    /// Each edge's curve at `t` is each of its faces' surface at the
+    /// pcurve's point `(1 − t)·uv0 + t·uv1`.
+    fn assert_pcurves_on_curves(b: &Brep) {
+        for e in &b.edges {
+            assert_eq!(e.pcurves.len(), e.uses);
+            for &(f, [p, q]) in &e.pcurves {
+                for t in [0.0, 0.3, 0.5, 1.0] {
+                    let uv = [0, 1].map(|k| p[k] + (q[k] - p[k]) * t);
+                    let on_face = b.faces[f].surface.eval(uv[0], uv[1])[0];
+                    assert!(dist(on_face, curve_eval(&e.curve, t).0) < 1e-15);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn pcurves_map_onto_the_edge_curves() {
+        assert_pcurves_on_curves(&brep(cube(), 1e-12, 1e-9));
+        let (x, y) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let half = |o: [f64; 3]| flat(o, [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], 0);
+        let t_junction = vec![
+            flat([0.0; 3], x, y, 1 << 1),
+            half([1.0, 0.0, 0.0]),
+            half([1.0, 0.5, 0.0]),
+        ];
+        assert_pcurves_on_curves(&brep(t_junction, 1e-12, 1e-9));
     }
 
     #[test]
