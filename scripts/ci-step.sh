@@ -26,7 +26,7 @@ start=$(date +%s)
 step() { echo "== step: $* ($(( $(date +%s) - start )) s)"; }
 
 step "tools"
-venv=${STEP_VENV:-$HOME/.cache/capdiv/step-venv}
+venv=${STEP_VENV:-${HOME:-/tmp}/.cache/capdiv/step-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet --disable-pip-version-check cadquery-ocp==8.0.1.1.0
 py="$venv/bin/python"
