@@ -7,6 +7,7 @@
 #   ci-stream.sh     streaming C²PS firmware on the Cortex-M0 (16 KiB RAM)
 #   ci-cfirmware.sh  the C ABI staticlib, its cbindgen header, the C firmware under QEMU
 #   ci-viewer.sh     the browser viewer in headless chromium (playwright-core)
+#   ci-step.sh       STEP output read and checked by OpenCascade (cadquery-ocp)
 #   ci-fuzz.sh       every cargo-fuzz target, bounded, on its committed corpus
 #   ci-miri.sh       the kernel's tests under Miri (sizes reduced under cfg(miri))
 set -euo pipefail
@@ -25,7 +26,7 @@ if ! command -v g++ >/dev/null; then
 fi
 cargo test --workspace --release
 cargo test -p capdiv --release --features micromath --test micromath
-for check in embedded stream cfirmware viewer exchange fuzz miri; do
+for check in embedded stream cfirmware viewer exchange step fuzz miri; do
   t0=$(date +%s)
   # Miri: each of its two parallel groups gets 25 minutes (about 8 measured
   # on an idle 2-core machine); a hang still fails.

@@ -412,11 +412,13 @@ pub enum SurfaceFormat {
     Glb,
     /// The welded tessellation as glTF 2.0 JSON, buffer embedded (base64).
     Gltf,
+    /// The exact patches as a STEP (ISO 10303-21, AP214) B-rep for CAD.
+    Step,
 }
 
 impl SurfaceFormat {
     /// The format asked for, else the one `-o`'s extension names (`.json`,
-    /// `.obj`, `.png`, `.glb`, `.gltf`, any case), else JSON.
+    /// `.obj`, `.png`, `.glb`, `.gltf`, `.step`, `.stp`, any case), else JSON.
     pub fn resolve(explicit: Option<SurfaceFormat>, output: Option<&std::path::Path>) -> Self {
         explicit
             .or_else(|| {
@@ -427,6 +429,7 @@ impl SurfaceFormat {
                     "png" => Some(SurfaceFormat::Png),
                     "glb" => Some(SurfaceFormat::Glb),
                     "gltf" => Some(SurfaceFormat::Gltf),
+                    "step" | "stp" => Some(SurfaceFormat::Step),
                     _ => None,
                 }
             })
@@ -550,8 +553,8 @@ pub struct SurfaceArgs {
     /// Bézier patch with its kind, level, face and domain; every cap with its
     /// centre, scheme, valence, limit point and normal; the summary); `obj` —
     /// the tessellated surface, welded, with normals; `png` — a shaded
-    /// preview; glTF 2.0 (binary `glb`, or `gltf` with the buffer embedded)
-    /// [default: from the `-o` extension, else json; on a terminal without
+    /// preview; glTF 2.0 (binary `glb`, or `gltf` with the buffer embedded);
+    /// `step` — the exact patches as a STEP B-rep of B-spline faces [default: from the `-o` extension, else json; on a terminal without
     /// `-o`, only the summary is printed].
     #[arg(long, value_enum)]
     pub format: Option<SurfaceFormat>,

@@ -18,7 +18,12 @@
 //!   consistently oriented OBJ (checked, and reported);
 //! - `png`: a shaded preview of that tessellation (colours by level);
 //! - `glb`, `gltf`: that tessellation as glTF 2.0, a node per OBJ object
-//!   ([`crate::export::gltf`]).
+//!   ([`crate::export::gltf`]);
+//! - `step`: the exact patches as an ISO 10303-21 B-rep of B-spline faces,
+//!   each cap's last hole closed by collapsed ruled patches
+//!   ([`crate::export::step`]); the summary adds the face, edge and vertex
+//!   counts, the shell, and for a closed shell the volume it encloses (Gauss
+//!   quadrature over the faces).
 //!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
@@ -26,7 +31,7 @@
 use super::Outcome;
 use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, DEFAULT_MAX_PATCHES};
 use crate::error::{CliError, Naming};
-use crate::export::gltf;
+use crate::export::{gltf, step};
 use crate::input::{parse, Input, Source};
 use crate::mesh::Mesh;
 use crate::output::{to_json, Sink};
@@ -181,6 +186,21 @@ fn produce<R: Scalar>(
             let report = report(name, &surface.summary, None, naming);
             (to_json(&out, args.pretty), report)
         }
+        SurfaceFormat::Step => {
+            // f32 patches are joined where the f64 ones are (see
+            // `step::brep_guided`).
+            let guide = if precision == "f32" {
+                Some(build_scheme::<f64>(
+                    name, mesh, args.depth, tables, "f64", cc,
+                )?)
+            } else {
+                None
+            };
+            let mut report = report(name, &surface.summary, None, naming);
+            let (text, line) = step_text(&surface, guide.as_ref(), mesh, name, args, precision);
+            report.push_str(&line);
+            (text.into_bytes(), report)
+        }
         SurfaceFormat::Obj | SurfaceFormat::Png | SurfaceFormat::Glb | SurfaceFormat::Gltf => {
             // f32 output is welded where the f64 surface welds (see
             // `tessellate_surface`); f64 output needs no guide.
@@ -236,6 +256,68 @@ fn produce<R: Scalar>(
             (bytes, report)
         }
     })
+}
+
+/// The STEP file of a surface ([`step`]; with a `guide`, the same surface
+/// in f64, joined where the guide's faces join) and its summary line
+/// `  step         F faces (P patches, H hole fills), E edges, V vertices;
+/// closed shell; volume X; T ms` (or `open shell (N free edges); T ms`).
+pub fn step_text<R: Scalar>(
+    surface: &Surface<R>,
+    guide: Option<&Surface<f64>>,
+    mesh: &MeshInput,
+    name: &str,
+    args: &SurfaceArgs,
+    precision: &str,
+) -> (String, String) {
+    let start = Instant::now();
+    let faces = step::faces(&surface.patches);
+    let (tol, _) = weld_tolerance(mesh, WELD_F64);
+    let size = step::model_size(&faces);
+    let b = match guide {
+        Some(g) => step::brep_guided(
+            faces,
+            &step::faces(&g.patches),
+            tol,
+            step::UNCERTAINTY * size,
+        ),
+        None => step::brep(faces, tol, step::UNCERTAINTY * size),
+    };
+    let file_name = args
+        .output
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "capdiv.step".into());
+    let header = step::Header {
+        file_name,
+        product: name.to_string(),
+        time_stamp: step::time_stamp(std::time::SystemTime::now()),
+        description: format!(
+            "capdiv surface --depth {} --precision {} {name}",
+            args.depth, precision
+        ),
+    };
+    let text = step::write(&b, &header);
+    let patches = surface.patches.len();
+    let shell = if b.is_closed() {
+        format!("closed shell; volume {}", step::volume(&b.faces))
+    } else {
+        format!(
+            "open shell ({})",
+            count(b.free_edges(), "free edge", "free edges")
+        )
+    };
+    let line = format!(
+        "  step         {} ({} patches, {} hole fills), {}, {}; {shell}; {:.1} ms\n",
+        count(b.faces.len(), "face", "faces"),
+        patches,
+        b.faces.len() - patches,
+        count(b.edges.len(), "edge", "edges"),
+        count(b.vertices.len(), "vertex", "vertices"),
+        start.elapsed().as_secs_f64() * 1e3
+    );
+    (text, line)
 }
 
 /// A surface: every patch and cap the evaluator gave, and the summary.
