@@ -174,6 +174,13 @@ fn produce<R: Scalar>(
         cc,
         args.max_patches,
     )?;
+    // The f64 surface that f32 output is joined and welded by.
+    let f64_guide = || -> Result<Option<Surface<f64>>, CliError> {
+        if precision != "f32" {
+            return Ok(None);
+        }
+        build_scheme::<f64>(name, mesh, args.depth, tables, "f64", cc, args.max_patches).map(Some)
+    };
     let grid = args.grid as usize;
     let format = args.format();
     Ok(match format {
@@ -189,13 +196,7 @@ fn produce<R: Scalar>(
         SurfaceFormat::Step => {
             // f32 patches are joined where the f64 ones are (see
             // `step::brep_guided`).
-            let guide = if precision == "f32" {
-                Some(build_scheme::<f64>(
-                    name, mesh, args.depth, tables, "f64", cc,
-                )?)
-            } else {
-                None
-            };
+            let guide = f64_guide()?;
             let mut report = report(name, &surface.summary, None, naming);
             let (text, line) = step_text(&surface, guide.as_ref(), mesh, name, args, precision);
             report.push_str(&line);
@@ -204,19 +205,7 @@ fn produce<R: Scalar>(
         SurfaceFormat::Obj | SurfaceFormat::Png | SurfaceFormat::Glb | SurfaceFormat::Gltf => {
             // f32 output is welded where the f64 surface welds (see
             // `tessellate_surface`); f64 output needs no guide.
-            let guide = if precision == "f32" {
-                Some(build_scheme::<f64>(
-                    name,
-                    mesh,
-                    args.depth,
-                    tables,
-                    "f64",
-                    cc,
-                    args.max_patches,
-                )?)
-            } else {
-                None
-            };
+            let guide = f64_guide()?;
             // glTF groups faces by input face (its objects); the others colour
             // them by level.
             let tag = match format {
