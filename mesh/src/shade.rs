@@ -92,15 +92,6 @@ impl HighlightLines {
         })
     }
 
-    /// Light lines relative to a surface of bounding box `[lo, hi]`: the
-    /// light plane a box diagonal above the box's top face
-    /// (`+z`), lines along `y`, about `count` of them across the box.
-    pub fn for_box(lo: [f64; 3], hi: [f64; 3], count: f64) -> Option<Self> {
-        let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-        let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), hi[2] + size];
-        HighlightLines::new(centre, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0], size / count)
-    }
-
     /// Where the normal line `p + μ·n` meets the light plane, measured across
     /// the family in units of the spacing: integers are light lines. `None`
     /// where the normal is parallel to the plane (the normal line never
