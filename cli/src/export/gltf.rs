@@ -197,7 +197,8 @@ impl Part {
         for tri in indices.chunks_exact(3) {
             let p: [[f64; 3]; 3] =
                 core::array::from_fn(|k| positions[tri[k] as usize].map(f64::from));
-            let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+            let [a, b, c] = p.map(Point3);
+            let n = (b - a).cross(c - a).0;
             for &i in tri {
                 for k in 0..3 {
                     fallback[i as usize][k] += n[k];
@@ -220,18 +221,6 @@ impl Part {
             indices,
         }
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// `n / |n|` rounded to `f32` and normalised again in `f32`'s terms, or

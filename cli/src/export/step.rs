@@ -40,7 +40,7 @@
 //!   the distance uncertainty is [`UNCERTAINTY`] × the model size. Numbers
 //!   are written exactly (shortest round-trip, [`write_number`]).
 
-use capdiv::Real;
+use capdiv::{Point3, Real};
 use capdiv_mesh::tessellate::{weld, write_number, PatchGeometry};
 use capdiv_mesh::PatchRecord;
 use std::collections::BTreeMap;
@@ -160,7 +160,7 @@ pub fn curve_eval(c: &[[f64; 3]], t: f64) -> ([f64; 3], [f64; 3]) {
         return (c[0], [0.0; 3]);
     }
     let p = lerp(b[0], b[1], t);
-    let dp = sub(b[1], b[0]).map(|x| x * d as f64);
+    let dp = (Point3(b[1]) - Point3(b[0])).0.map(|x| x * d as f64);
     (p, dp)
 }
 
@@ -185,25 +185,8 @@ fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = sub(a, b);
-    dot(d, d).sqrt()
+    (Point3(a) - Point3(b)).norm()
 }
 
 /// The faces of a surface: every patch in order, then one hole fill per
@@ -512,7 +495,7 @@ pub fn volume(faces: &[StepFace]) -> f64 {
         for &(u, wu) in &nodes {
             for &(v, wv) in &nodes {
                 let [p, pu, pv] = f.surface.eval(u, v);
-                total += wu * wv * dot(p, cross(pu, pv));
+                total += wu * wv * Point3(p).dot(Point3(pu).cross(Point3(pv)));
             }
         }
     }
