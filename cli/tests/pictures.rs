@@ -374,6 +374,20 @@ fn hatched(png: &Png) -> usize {
         .count()
 }
 
+/// The 12-sided tall tube written as `tube.obj` and `tube.json` in `dir`
+/// (the same mesh in each file's own numbering).
+fn tube_files(dir: &std::path::Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let mesh = tall_tube(12);
+    let obj = dir.join("tube.obj");
+    std::fs::write(&obj, obj_of(&mesh)).unwrap();
+    let json = write_json(
+        dir,
+        "tube.json",
+        &serde_json::json!({"kind": "mesh", "vertices": mesh.vertices, "faces": mesh.faces}),
+    );
+    (obj, json)
+}
+
 /// `--focus V --zoom Z` on the tall tube, whose top pole (OBJ vertex 158,
 /// JSON vertex 157) has a C²PS cap:
 /// - the cap's limit point is at the picture's centre: the centre pixel is
@@ -390,14 +404,7 @@ fn hatched(png: &Png) -> usize {
 #[test]
 fn focus_frames_a_vertex_cap() {
     let dir = tempdir();
-    let mesh = tall_tube(12);
-    let obj = dir.path().join("tube.obj");
-    std::fs::write(&obj, obj_of(&mesh)).unwrap();
-    let json = write_json(
-        dir.path(),
-        "tube.json",
-        &serde_json::json!({"kind": "mesh", "vertices": mesh.vertices, "faces": mesh.faces}),
-    );
+    let (obj, json) = tube_files(dir.path());
     let render = |file: &std::path::Path, args: &[&str], name: &str| {
         let out = dir.path().join(name);
         let mut all = vec!["render"];
@@ -467,14 +474,7 @@ fn focus_frames_a_vertex_cap() {
 #[test]
 fn focus_out_of_range_is_a_one_line_error() {
     let dir = tempdir();
-    let mesh = tall_tube(12);
-    let obj = dir.path().join("tube.obj");
-    std::fs::write(&obj, obj_of(&mesh)).unwrap();
-    let json = write_json(
-        dir.path(),
-        "tube.json",
-        &serde_json::json!({"kind": "mesh", "vertices": mesh.vertices, "faces": mesh.faces}),
-    );
+    let (obj, json) = tube_files(dir.path());
     let out = dir.path().join("x.png");
     let o = s(&out);
     for (args, want) in [
