@@ -45,6 +45,7 @@ use crate::input::MeshInput;
 use crate::refine::{refine, PolarSeed};
 use crate::stencil::StencilTable;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
+use alloc::collections::BTreeSet;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::eg::RuleTable;
@@ -573,13 +574,18 @@ impl<'t> SurfacePlan<'t> {
                 hole_point: p.hole_point,
             });
         }
+        // A vertex of the analysed level whose cap came a level or more
+        // further in has not fallen back.
+        let capped: BTreeSet<u32> = a
+            .caps
+            .iter()
+            .filter_map(|cap| a.points.vertex_origin(cap.center))
+            .collect();
+        self.fallbacks.retain(|(v, _)| !capped.contains(v));
         for cap in &a.caps {
             let sectors: Vec<FaceChart> = cap.sectors.iter().flatten().copied().collect();
             let n = sectors.len();
-            // A vertex of the analysed level whose cap came a level or more
-            // further in has not fallen back.
             let origin = a.points.vertex_origin(cap.center);
-            self.fallbacks.retain(|&(v, _)| Some(v) != origin);
             // Named by the input vertex it is the child of, else by the
             // input face whose centre (or whose centre's child) it is.
             let vertex = origin.filter(|&v| (v as usize) < self.input_vertices);
