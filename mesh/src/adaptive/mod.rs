@@ -11,10 +11,13 @@
 //! c-net is there, [`cnet`]), the faces around it become a cap (EG, or
 //! Catmull-Clark where EG has no rule) instead of rings.
 //!
-//! Each face is refined inside its own neighbourhood (the faces around the
-//! vertices of the faces around its corners), which is all the refinement
-//! rules reach; points that two neighbourhoods share are made once
-//! ([`points`]), so the patches of neighbouring faces meet exactly.
+//! The refinement goes level by level, as OpenSubdiv's sparse refinement
+//! does: the faces of a level that need refining are refined together,
+//! inside one child level made of the faces around their corners (the
+//! faces around the vertices of those faces are all the refinement rules
+//! reach), each such face once. Points are named by what they are the
+//! child of ([`points`]), so a patch edge can ask whether the patch across
+//! it is finer.
 
 pub mod base;
 pub mod cnet;
@@ -25,11 +28,11 @@ pub mod refine;
 pub mod regular;
 
 use crate::chart::{Affine, FaceChart};
-use alloc::collections::{BTreeMap, BTreeSet};
+use alloc::collections::BTreeMap;
 use alloc::vec;
 use alloc::vec::Vec;
 use cnet::level_cnet;
-use hashbrown::HashMap;
+use hashbrown::{HashMap, HashSet};
 use level::Level;
 use points::{Key, Points};
 use refine::{limit_point, refine, Rules};
@@ -165,8 +168,63 @@ pub fn cover(
         unresolved_faces: Vec::new(),
         level_jumps: 0,
     };
-    for &(f, chart) in roots {
-        visit(base, f as usize, 0, chart, false, options, &mut out);
+    // Level by level: the faces of a level that need refinement are refined
+    // together, inside one child level of the faces around their corners
+    // (each face once however many of them it borders).
+    let mut active: Vec<Active> = roots
+        .iter()
+        .map(|&(f, chart)| Active {
+            face: f,
+            chart,
+            may_close: false,
+        })
+        .collect();
+    let mut child_level: Level;
+    let mut m = base;
+    let mut level = 0;
+    while !active.is_empty() {
+        let refined: Vec<Active> = active
+            .into_iter()
+            .filter(|a| visit(m, a, level, options, &mut out))
+            .collect();
+        if refined.is_empty() {
+            break;
+        }
+        // The faces around the refined faces' corners, each once.
+        let mut ring: Vec<u32> = Vec::new();
+        for a in &refined {
+            for c in m.face_corners(a.face as usize) {
+                let v = m.corner_vertex[c as usize] as usize;
+                ring.extend(
+                    m.vertex_corners(v)
+                        .iter()
+                        .map(|&k| m.corner_face[k as usize]),
+                );
+            }
+        }
+        ring.sort_unstable();
+        ring.dedup();
+        let child = refine(m, &ring, options.rules, &mut out.points);
+        active = Vec::with_capacity(4 * refined.len());
+        for a in &refined {
+            let f = a.face as usize;
+            let at = ring.binary_search(&a.face).unwrap_or(0);
+            // A child may be a last hole only if this face has one
+            // irregular corner: otherwise a sibling would border the holes
+            // of two vertices (a triangle's sub-quad, whose corner and
+            // centre are both irregular).
+            let may_close = irregular_corners(m, f).0.count_ones() <= 1;
+            let n = m.face(f).len();
+            let first = child.first[at];
+            active.extend((0..n).map(|k| Active {
+                face: first + k as u32,
+                chart: a.chart.child(k, n),
+                may_close,
+            }));
+        }
+        child_level = child.level;
+        m = &child_level;
+        level += 1;
     }
     // Every face around a cap's centre is reached at the cap's level (their
     // parents all have the centre's parent as an irregular corner, and no
@@ -273,17 +331,23 @@ fn final_hole(m: &Level, f: usize, level: u32, options: AdaptiveOptions) -> Opti
     Some(m.corner_vertex[(m.face_start[f] + k) as usize] as usize)
 }
 
-fn visit(
-    m: &Level,
-    f: usize,
-    level: u32,
+/// A face of a level that the refinement has reached.
+struct Active {
+    /// The face (of its level).
+    face: u32,
+    /// Where it lies in the input.
     chart: FaceChart,
+    /// Whether it may be a last hole (see [`cover`]).
     may_close: bool,
-    options: AdaptiveOptions,
-    out: &mut Adaptive,
-) {
+}
+
+/// Covers face `a.face` of `m` at `level` by a patch, a cap's sector or a
+/// last hole, or records it as unresolved; `true` when it needs refining
+/// instead.
+fn visit(m: &Level, a: &Active, level: u32, options: AdaptiveOptions, out: &mut Adaptive) -> bool {
+    let (f, chart) = (a.face as usize, a.chart);
     if m.hole[f] {
-        return;
+        return false;
     }
     if let Some(gather) = regular_grid(m, f, &mut out.points) {
         let first = m.face_start[f] as usize;
@@ -297,12 +361,12 @@ fn visit(
             hole_point: NONE,
             finer: 0,
         });
-        return;
+        return false;
     }
     if cap_sector(m, f, level, chart, options, out) {
-        return;
+        return false;
     }
-    if let Some(v) = final_hole(m, f, level, options).filter(|_| may_close) {
+    if let Some(v) = final_hole(m, f, level, options).filter(|_| a.may_close) {
         if let Some(point) = limit_point(m, v, &mut out.points) {
             let first = m.face_start[f] as usize;
             out.holes.push(LastHole {
@@ -312,44 +376,14 @@ fn visit(
                 level,
                 point,
             });
-            return;
+            return false;
         }
     }
     if level >= options.depth.max(MIN_HOLE_LEVEL) + EXTRA_LEVELS {
         out.unresolved_faces.push(chart.face);
-        return;
+        return false;
     }
-    // The faces around f's corners, each once.
-    let mut ring: Vec<u32> = Vec::new();
-    for c in m.face_corners(f) {
-        let v = m.corner_vertex[c as usize] as usize;
-        for &k in m.vertex_corners(v) {
-            ring.push(m.corner_face[k as usize]);
-        }
-    }
-    ring.sort_unstable();
-    ring.dedup();
-    let at = ring.iter().position(|&g| g as usize == f).unwrap_or(0);
-    let child = refine(m, &ring, options.rules, &mut out.points);
-    // A child may be a last hole only if this face has one irregular
-    // corner: otherwise a sibling would border the holes of two vertices
-    // (a triangle's sub-quad, whose corner and centre are both irregular).
-    let children_may_close = irregular_corners(m, f).0.count_ones() <= 1;
-    let cm = &child.level;
-    let n = m.face(f).len();
-    let first = child.first[at] as usize;
-    for k in 0..n {
-        let sub = chart.child(k, n);
-        visit(
-            cm,
-            first + k,
-            level + 1,
-            sub,
-            children_may_close,
-            options,
-            out,
-        );
-    }
+    true
 }
 
 /// Sets [`AdaptivePatch::finer`] and [`AdaptivePatch::hole`] from the
@@ -362,7 +396,7 @@ fn visit(
 fn mark_neighbours(out: &mut Adaptive) {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // Edge → (vertex at the coarsest level its holes have, limit point).
-    let mut hole_edges: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    let mut hole_edges: HashMap<(u32, u32), usize> = HashMap::new();
     for (i, h) in out.holes.iter().enumerate() {
         for k in 0..4 {
             // The edge and its pieces at every finer level made.
@@ -419,7 +453,7 @@ fn mark_neighbours(out: &mut Adaptive) {
     }
     out.hole_conflicts = conflicts;
     let edges = out.edges();
-    let cap_edges: BTreeSet<(u32, u32)> = out
+    let cap_edges: HashSet<(u32, u32)> = out
         .caps
         .iter()
         .flat_map(|c| &c.faces)
@@ -448,7 +482,7 @@ fn mark_neighbours(out: &mut Adaptive) {
 impl Adaptive {
     /// The edges of the patches and of the caps' faces, by their end points
     /// (smaller first).
-    pub fn edges(&self) -> BTreeSet<(u32, u32)> {
+    pub fn edges(&self) -> HashSet<(u32, u32)> {
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
         self.patches
             .iter()
@@ -469,7 +503,7 @@ fn halves(points: &Points, a: u32, b: u32) -> Option<((u32, u32), (u32, u32))> {
 }
 
 /// Whether the edge `(a, b)` is met by two half-size patch edges.
-pub fn finer_across(points: &Points, edges: &BTreeSet<(u32, u32)>, a: u32, b: u32) -> bool {
+pub fn finer_across(points: &Points, edges: &HashSet<(u32, u32)>, a: u32, b: u32) -> bool {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     let (Some(ca), Some(mid)) = (
         points.get(&Key::Vertex(a)),

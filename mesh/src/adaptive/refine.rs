@@ -5,11 +5,11 @@
 //! (`ComputeVertexLimitMask`).
 //!
 //! Refining faces `R` needs, for every vertex of `R`, all its faces and
-//! edges; the caller ([`super::cover`]) refines the faces around a target
-//! face's corners inside a level that holds the faces around their vertices,
-//! and the child level it gets back again holds the faces around the
-//! corners' vertices of each child of the target (the closure that lets the
-//! refinement go on).
+//! edges; the caller ([`super::cover`]) refines the faces around the
+//! corners of the faces it targets, inside a level that holds the faces
+//! around their vertices, and the child level it gets back again holds the
+//! faces around the corners' vertices of each child of a target (the
+//! closure that lets the refinement go on).
 //!
 //! Masks, over the parent level's points:
 //! - face point: centroid;
