@@ -153,6 +153,18 @@ pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
     if t.face_len(f) != 4 {
         return None;
     }
+    if let Some(g) = interior_face_grid(t, f) {
+        return Some(g.map(|row| row.map(Combo::vertex)));
+    }
+    gathered_face_grid(t, f)
+}
+
+/// [`face_grid`] by gathering each corner's 3×3 neighbourhood
+/// ([`corner_grid`]) and mirroring at the boundary: every regular face.
+fn gathered_face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
+    if t.face_len(f) != 4 {
+        return None;
+    }
     let mut grid: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
     const CORNER: [(i32, i32); 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
     for (k, &(ci, cj)) in CORNER.iter().enumerate() {
@@ -196,6 +208,77 @@ pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
         }
     }
     Some(full)
+}
+
+/// Grid position of face corner `k` (`[i][j]`).
+const GRID_CORNER: [(usize, usize); 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
+
+/// The outward direction of face side `k` (corner `k` → `k + 1`).
+const OUTWARD: [(isize, isize); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+
+/// `p + a + b` on the 4×4 grid.
+fn step(p: (usize, usize), a: (isize, isize), b: (isize, isize)) -> (usize, usize) {
+    (
+        p.0.wrapping_add_signed(a.0 + b.0),
+        p.1.wrapping_add_signed(a.1 + b.1),
+    )
+}
+
+/// [`face_grid`] of an interior quad with four 4-valent interior corners
+/// and nine distinct quads around, read straight off the half-edges: across
+/// side `k` the neighbour's two far vertices, across corner `k` the diagonal
+/// quad's far vertex. `None` where that shape is not there (the general
+/// path decides).
+pub fn interior_face_grid(t: &Topology, f: usize) -> Option<[[u32; 4]; 4]> {
+    let mut g = [[0u32; 4]; 4];
+    let mut faces = [f as u32; 9];
+    // Per corner: the diagonal quad's vertex next to the corner on the
+    // previous side's neighbour (checked against that neighbour below).
+    let mut beside = [0u32; 4];
+    for k in 0..4 {
+        let h = t.face_half_edge(f, k);
+        let v = t.origin(h) as usize;
+        if t.is_boundary(v) || t.vertex_face_count(v) != 4 {
+            return None;
+        }
+        let (p, q) = (GRID_CORNER[k], GRID_CORNER[(k + 1) % 4]);
+        let out = OUTWARD[k];
+        let back = OUTWARD[(k + 3) % 4];
+        g[p.0][p.1] = t.origin(h);
+        // The neighbour across side k runs it from corner k+1 to corner k.
+        let across = t.twin(h);
+        if across == NONE || t.face_len(t.face_of(across) as usize) != 4 {
+            return None;
+        }
+        let to_a = t.next(across);
+        let a = step(p, out, (0, 0));
+        let b = step(q, out, (0, 0));
+        g[a.0][a.1] = t.dest(to_a);
+        g[b.0][b.1] = t.dest(t.next(to_a));
+        // The diagonal quad runs the edge (a, corner k) the other way.
+        let diagonal = t.twin(to_a);
+        if diagonal == NONE || t.face_len(t.face_of(diagonal) as usize) != 4 {
+            return None;
+        }
+        let to_c = t.next(diagonal);
+        beside[k] = t.dest(to_c);
+        let d = step(p, out, back);
+        g[d.0][d.1] = t.dest(t.next(to_c));
+        faces[1 + 2 * k] = t.face_of(across);
+        faces[2 + 2 * k] = t.face_of(diagonal);
+    }
+    for k in 0..4 {
+        let c = step(GRID_CORNER[k], OUTWARD[(k + 3) % 4], (0, 0));
+        if g[c.0][c.1] != beside[k] {
+            return None;
+        }
+    }
+    for i in 0..9 {
+        if faces[i + 1..].contains(&faces[i]) {
+            return None;
+        }
+    }
+    Some(g)
 }
 
 /// Fills missing border entries by mirroring (`2·near − far` along a row or
@@ -273,6 +356,32 @@ mod tests {
             }
         }
         MeshInput::new(verts, faces)
+    }
+
+    #[test]
+    fn half_edge_grid_equals_the_gathered_grid() {
+        // Tori (small ones wrap around: faces repeat in a neighbourhood),
+        // a grid with its boundary, an extraordinary disk and a globe.
+        let meshes = [
+            crate::samples::torus(3, 3),
+            crate::samples::torus(4, 3),
+            crate::samples::torus(7, 5),
+            grid_mesh(5, 4),
+            crate::samples::extraordinary_disk(5, 2),
+            crate::samples::globe(8, 3),
+        ];
+        let mut fast = 0;
+        for m in &meshes {
+            let t = Topology::new(m).unwrap();
+            for f in 0..t.num_faces() {
+                let gathered = gathered_face_grid(&t, f);
+                if let Some(g) = interior_face_grid(&t, f) {
+                    fast += 1;
+                    assert_eq!(Some(g.map(|r| r.map(Combo::vertex))), gathered, "face {f}");
+                }
+            }
+        }
+        assert!(fast > 40, "{fast} faces took the half-edge path");
     }
 
     #[test]

@@ -183,37 +183,40 @@ pub fn cover(
     let mut m = base;
     let mut level = 0;
     while !active.is_empty() {
-        let refined: Vec<Active> = active
+        // The faces to refine, with their irregular corners.
+        let refined: Vec<(Active, u32)> = active
             .into_iter()
-            .filter(|a| visit(m, a, level, options, &mut out))
+            .filter_map(|a| Some((a.clone(), visit(m, &a, level, options, &mut out)?)))
             .collect();
         if refined.is_empty() {
             break;
         }
-        // The faces around the refined faces' corners, each once.
+        // The faces around the refined faces' corners, each once, and each
+        // one's place in that list.
         let mut ring: Vec<u32> = Vec::new();
-        for a in &refined {
+        let mut place = vec![NONE; m.num_faces()];
+        for (a, _) in &refined {
             for c in m.face_corners(a.face as usize) {
                 let v = m.corner_vertex[c as usize] as usize;
-                ring.extend(
-                    m.vertex_corners(v)
-                        .iter()
-                        .map(|&k| m.corner_face[k as usize]),
-                );
+                for &k in m.vertex_corners(v) {
+                    let g = m.corner_face[k as usize];
+                    if place[g as usize] == NONE {
+                        place[g as usize] = ring.len() as u32;
+                        ring.push(g);
+                    }
+                }
             }
         }
-        ring.sort_unstable();
-        ring.dedup();
         let child = refine(m, &ring, options.rules, &mut out.points);
         active = Vec::with_capacity(4 * refined.len());
-        for a in &refined {
+        for (a, irregular) in &refined {
             let f = a.face as usize;
-            let at = ring.binary_search(&a.face).unwrap_or(0);
+            let at = place[f] as usize;
             // A child may be a last hole only if this face has one
             // irregular corner: otherwise a sibling would border the holes
             // of two vertices (a triangle's sub-quad, whose corner and
             // centre are both irregular).
-            let may_close = irregular_corners(m, f).0.count_ones() <= 1;
+            let may_close = irregular.count_ones() <= 1;
             let n = m.face(f).len();
             let first = child.first[at];
             active.extend((0..n).map(|k| Active {
@@ -249,6 +252,7 @@ fn cap_sector(
     f: usize,
     level: u32,
     chart: FaceChart,
+    (bits, semi): (u32, bool),
     options: AdaptiveOptions,
     out: &mut Adaptive,
 ) -> bool {
@@ -262,7 +266,6 @@ fn cap_sector(
     {
         return false;
     }
-    let (bits, semi) = irregular_corners(m, f);
     if semi || bits.count_ones() != 1 {
         return false;
     }
@@ -319,11 +322,16 @@ fn irregular_corners(m: &Level, f: usize) -> (u32, bool) {
 
 /// If face `f` at `level` is the last hole around one irregular vertex: that
 /// vertex.
-fn final_hole(m: &Level, f: usize, level: u32, options: AdaptiveOptions) -> Option<usize> {
+fn final_hole(
+    m: &Level,
+    f: usize,
+    level: u32,
+    (bits, semi): (u32, bool),
+    options: AdaptiveOptions,
+) -> Option<usize> {
     if level < options.depth.max(MIN_HOLE_LEVEL) || m.face(f).len() != 4 || m.hole[f] {
         return None;
     }
-    let (bits, semi) = irregular_corners(m, f);
     if semi || bits.count_ones() != 1 {
         return None;
     }
@@ -332,6 +340,7 @@ fn final_hole(m: &Level, f: usize, level: u32, options: AdaptiveOptions) -> Opti
 }
 
 /// A face of a level that the refinement has reached.
+#[derive(Clone)]
 struct Active {
     /// The face (of its level).
     face: u32,
@@ -342,12 +351,18 @@ struct Active {
 }
 
 /// Covers face `a.face` of `m` at `level` by a patch, a cap's sector or a
-/// last hole, or records it as unresolved; `true` when it needs refining
-/// instead.
-fn visit(m: &Level, a: &Active, level: u32, options: AdaptiveOptions, out: &mut Adaptive) -> bool {
+/// last hole, or records it as unresolved; when it needs refining instead,
+/// its irregular corners (bit per corner).
+fn visit(
+    m: &Level,
+    a: &Active,
+    level: u32,
+    options: AdaptiveOptions,
+    out: &mut Adaptive,
+) -> Option<u32> {
     let (f, chart) = (a.face as usize, a.chart);
     if m.hole[f] {
-        return false;
+        return None;
     }
     if let Some(gather) = regular_grid(m, f, &mut out.points) {
         let first = m.face_start[f] as usize;
@@ -361,12 +376,13 @@ fn visit(m: &Level, a: &Active, level: u32, options: AdaptiveOptions, out: &mut 
             hole_point: NONE,
             finer: 0,
         });
-        return false;
+        return None;
     }
-    if cap_sector(m, f, level, chart, options, out) {
-        return false;
+    let irregular = irregular_corners(m, f);
+    if cap_sector(m, f, level, chart, irregular, options, out) {
+        return None;
     }
-    if let Some(v) = final_hole(m, f, level, options).filter(|_| a.may_close) {
+    if let Some(v) = final_hole(m, f, level, irregular, options).filter(|_| a.may_close) {
         if let Some(point) = limit_point(m, v, &mut out.points) {
             let first = m.face_start[f] as usize;
             out.holes.push(LastHole {
@@ -376,14 +392,14 @@ fn visit(m: &Level, a: &Active, level: u32, options: AdaptiveOptions, out: &mut 
                 level,
                 point,
             });
-            return false;
+            return None;
         }
     }
     if level >= options.depth.max(MIN_HOLE_LEVEL) + EXTRA_LEVELS {
         out.unresolved_faces.push(chart.face);
-        return false;
+        return None;
     }
-    true
+    Some(irregular.0)
 }
 
 /// Sets [`AdaptivePatch::finer`] and [`AdaptivePatch::hole`] from the

@@ -1,8 +1,9 @@
 //! `Points`: the points adaptive refinement makes, each a stencil row over
-//! earlier points, made once however many neighbourhoods need it. A point is
-//! named by what it is the child of (a vertex, an edge, a face of the level
-//! above), so two neighbourhoods that refine the same component share the
-//! point, and a patch edge can ask whether its neighbour is finer.
+//! earlier points. A vertex's or an edge's child is named by the points it
+//! is the child of (and phantom and limit points by theirs), so it is made
+//! once however many faces need it, and a patch edge can ask whether its
+//! neighbour is finer; a face's child is made once by the refinement of its
+//! level and needs no name.
 
 use super::NONE;
 use crate::stencil::StencilTable;
@@ -10,7 +11,7 @@ use alloc::vec::Vec;
 use hashbrown::HashMap;
 
 /// What a point is.
-#[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Key {
     /// The child of a vertex (its point).
     Vertex(u32),
@@ -20,9 +21,6 @@ pub enum Key {
     /// points (end points smaller first, then `k`): a base-level edge a face
     /// runs twice, or a further degenerate edge, as OpenSubdiv makes them.
     EdgeInstance(u32, u32, u32),
-    /// The child of a face (its points in order, from the rotation that
-    /// reads smallest).
-    Face(Vec<u32>),
     /// `2·a − b`: a phantom point beyond an infinitely sharp edge.
     Mirror(u32, u32),
     /// The limit position of a vertex.
@@ -55,6 +53,12 @@ impl Points {
     /// The point named `key`, if it was made.
     pub fn get(&self, key: &Key) -> Option<u32> {
         self.keys.get(key).copied()
+    }
+
+    /// A new point without a name (a face's child: made once).
+    pub fn make(&mut self, row: Vec<(u32, f64)>) -> u32 {
+        self.parent.push(NONE);
+        self.base + self.rows.push_row(row)
     }
 
     /// The point named `key`, made from `row()` the first time.

@@ -24,9 +24,9 @@
 use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, vertex_rule, Rule};
 use super::level::{Edges, Faces, Level};
 use super::points::{Key, Points};
+use super::NONE;
 use alloc::vec;
 use alloc::vec::Vec;
-use hashbrown::HashMap;
 
 /// A stencil row being built: `(point, weight)`, one entry per point.
 struct Row(Vec<(u32, f64)>);
@@ -86,22 +86,25 @@ pub struct Rules {
 /// Refines `faces` of `m` (see the module doc for what `m` must hold).
 pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Child {
     let chaikin = rules.chaikin;
-    // Children by parent index: maps, not arrays, as the parent may be the
-    // whole base mesh while the faces refined are a handful.
-    let mut vchild: HashMap<usize, u32> = HashMap::new();
-    let mut echild: HashMap<usize, u32> = HashMap::new();
-    let mut fchild: HashMap<usize, u32> = HashMap::new();
+    // Children by parent index (NONE: not made yet).
+    let mut vchild = vec![NONE; m.num_vertices()];
+    let mut echild = vec![NONE; m.edge_vertices.len()];
     let mut point: Vec<u32> = Vec::new();
     let mut vsharp: Vec<f32> = Vec::new();
     let mut faces_out = Faces {
-        face_start: vec![0],
-        ..Faces::default()
+        face_start: Vec::with_capacity(4 * faces.len() + 1),
+        corner_vertex: Vec::with_capacity(16 * faces.len()),
+        corner_face: Vec::with_capacity(16 * faces.len()),
+        corner_edge: Vec::with_capacity(16 * faces.len()),
     };
+    faces_out.face_start.push(0);
     let mut edges_out = Edges::default();
-    // Child edges by origin: (parent edge, end) and (parent face, corner).
-    let mut edge_child: HashMap<(usize, usize), u32> = HashMap::new();
-    let mut face_child: HashMap<(usize, usize), u32> = HashMap::new();
-    let mut holes = Vec::new();
+    // Child edges by origin: per parent edge, the halves at its two ends;
+    // per parent corner, the edge from the face point to the edge point of
+    // the corner's edge.
+    let mut edge_child = vec![[NONE; 2]; m.edge_vertices.len()];
+    let mut face_child = vec![NONE; m.corner_vertex.len()];
+    let mut holes = Vec::with_capacity(4 * faces.len());
     let mut first = Vec::with_capacity(faces.len());
 
     let new_vertex = |p: u32, s: f32, point: &mut Vec<u32>, vsharp: &mut Vec<f32>| -> u32 {
@@ -117,35 +120,36 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
     };
     for &f in faces {
         let f = f as usize;
-        if !fchild.contains_key(&f) {
-            let p = face_point(m, f, points);
-            fchild.insert(f, new_vertex(p, 0.0, &mut point, &mut vsharp));
-        }
+        // Each face is given once: its point is new.
+        let p = face_point(m, f, points);
+        let face_fc = new_vertex(p, 0.0, &mut point, &mut vsharp);
         for c in m.face_corners(f) {
             let v = m.corner_vertex[c as usize] as usize;
-            if !vchild.contains_key(&v) {
+            if vchild[v] == NONE {
                 let p = vertex_point(m, v, chaikin, points);
                 let s = decay(m.vertex_sharpness[v]);
-                vchild.insert(v, new_vertex(p, s, &mut point, &mut vsharp));
+                vchild[v] = new_vertex(p, s, &mut point, &mut vsharp);
             }
         }
         for c in m.face_corners(f) {
             let e = m.corner_edge[c as usize] as usize;
-            if !echild.contains_key(&e) {
+            if echild[e] == NONE {
                 let p = edge_point(m, e, rules, points);
-                echild.insert(e, new_vertex(p, 0.0, &mut point, &mut vsharp));
+                echild[e] = new_vertex(p, 0.0, &mut point, &mut vsharp);
             }
         }
         // The child edge of parent edge `e` at its end `end` (both ends
         // are corners of f: their children exist).
         let mut half = |e: usize, end: usize, edges: &mut Edges| -> u32 {
-            *edge_child.entry((e, end)).or_insert_with(|| {
+            if edge_child[e][end] == NONE {
                 let s = m.edge_sharpness[e];
                 let v = m.edge_vertices[e][end] as usize;
                 let cs = child_edge_sharpness(s, chaikin, around(m, v));
                 let cs = if is_sharp(cs) { cs } else { 0.0 };
-                new_edge([echild[&e], vchild[&v]], cs, m.edge_nonmanifold[e], edges)
-            })
+                edge_child[e][end] =
+                    new_edge([echild[e], vchild[v]], cs, m.edge_nonmanifold[e], edges);
+            }
+            edge_child[e][end]
         };
         // Which end of edge `e` corner vertex `v` is (`OpenSubdiv`'s
         // `QuadRefinement::populateFaceEdgesFromParentFaces`: of a
@@ -168,11 +172,12 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
             let e_next = m.corner_edge[c as usize] as usize;
             let e_prev = m.corner_edge[m.prev(c) as usize] as usize;
             let jp = if j == 0 { n - 1 } else { j - 1 };
-            let face_fc = fchild[&f];
             let mut across = |k: usize, e: usize, edges: &mut Edges| -> u32 {
-                *face_child
-                    .entry((f, k))
-                    .or_insert_with(|| new_edge([face_fc, echild[&e]], 0.0, false, edges))
+                let slot = &mut face_child[start + k];
+                if *slot == NONE {
+                    *slot = new_edge([face_fc, echild[e]], 0.0, false, edges);
+                }
+                *slot
             };
             let edges = [
                 half(e_next, end_at(e_next, v, true), &mut edges_out),
@@ -180,12 +185,7 @@ pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Ch
                 across(jp, e_prev, &mut edges_out),
                 half(e_prev, end_at(e_prev, v, false), &mut edges_out),
             ];
-            let verts = [
-                vchild[&(v as usize)],
-                echild[&e_next],
-                face_fc,
-                echild[&e_prev],
-            ];
+            let verts = [vchild[v as usize], echild[e_next], face_fc, echild[e_prev]];
             let face = (faces_out.face_start.len() - 1) as u32;
             faces_out.corner_vertex.extend_from_slice(&verts);
             faces_out.corner_edge.extend_from_slice(&edges);
@@ -207,20 +207,11 @@ fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
         .map(move |&e| m.edge_sharpness[e as usize])
 }
 
-/// The face point of `f`.
+/// The face point of `f` (a new point: [`refine`] makes each face's once).
 pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
-    let ps: Vec<u32> = m.face(f).iter().map(|&v| m.point[v as usize]).collect();
-    let (ps, n) = (&ps, ps.len());
-    let rotation = |k: usize| (0..n).map(move |i| ps[(k + i) % n]);
-    let k = (0..n)
-        .min_by(|&x, &y| rotation(x).cmp(rotation(y)))
-        .unwrap_or(0);
-    let key = rotation(k).collect();
-    points.get_or_make(Key::Face(key), || {
-        let mut row = Row::new();
-        add_centroid(m, f, 1.0, &mut row);
-        row.0
-    })
+    let mut row = Row::new();
+    add_centroid(m, f, 1.0, &mut row);
+    points.make(row.0)
 }
 
 /// The edge point of `e`.
@@ -314,6 +305,14 @@ fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool]) -> Row {
 pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> u32 {
     points.get_or_make(Key::Vertex(m.point[v]), || {
         let edges = m.vertex_edges(v);
+        if m.vertex_sharpness[v] == 0.0
+            && edges
+                .iter()
+                .all(|&e| !is_sharp(m.edge_sharpness[e as usize]))
+        {
+            // Smooth or dart now, and so in the child: no sharp edge pair.
+            return vertex_mask(m, v, Rule::Smooth, &[]).0;
+        }
         let parent: Vec<f32> = edges
             .iter()
             .map(|&e| m.edge_sharpness[e as usize])

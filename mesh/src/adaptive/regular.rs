@@ -41,6 +41,9 @@ pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
         return false;
     }
     let v = m.corner_vertex[c as usize] as usize;
+    if fan.len() == m.vertex_corners(v).len() {
+        return true;
+    }
     let mut other = Vec::with_capacity(8);
     let own: Vec<Corner> = fan.clone();
     m.vertex_corners(v)
@@ -79,6 +82,79 @@ pub fn regular_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16
     if m.face(f).len() != 4 {
         return None;
     }
+    if let Some(g) = smooth_interior_grid(m, f) {
+        return Some(g);
+    }
+    gathered_grid(m, f, points)
+}
+
+/// Outward direction of face side `k` (corner `k` → `k + 1`) in the grid.
+const OUTWARD: [(i32, i32); 4] = [(0, -1), (1, 0), (0, 1), (-1, 0)];
+
+/// [`regular_grid`] of a quad whose four corners are smooth 4-valent
+/// vertices (no sharpness on them or their edges, manifold edges) with
+/// nine distinct quads around, read straight off the corners: across side
+/// `k` the neighbour's two far points, across corner `k` the diagonal
+/// quad's far point. `None` where that shape is not there.
+pub fn smooth_interior_grid(m: &Level, f: usize) -> Option<[u32; 16]> {
+    let p = |k: Corner| m.point[m.corner_vertex[k as usize] as usize];
+    let quad = |k: Corner| m.face(m.corner_face[k as usize] as usize).len() == 4;
+    let mut g = [0u32; 16];
+    let mut put = |(i, j): (i32, i32), x: u32| g[(4 * i + j) as usize] = x;
+    let mut faces = [f as u32; 9];
+    let mut beside = [0u32; 4];
+    let first = m.face_start[f];
+    for k in 0..4usize {
+        let c = first + k as u32;
+        let v = m.corner_vertex[c as usize] as usize;
+        if m.vertex_sharpness[v] != 0.0
+            || m.vertex_corners(v).len() != 4
+            || m.vertex_edges(v)
+                .iter()
+                .any(|&e| m.edge_sharpness[e as usize] != 0.0)
+        {
+            return None;
+        }
+        let (at, next_at) = (CORNER[k], CORNER[(k + 1) % 4]);
+        let (out, back) = (OUTWARD[k], OUTWARD[(k + 3) % 4]);
+        put(at, p(c));
+        // The neighbour across side k runs it from corner k+1 to corner k.
+        let o = m.across(c).filter(|&o| quad(o))?;
+        let here = m.next(o);
+        put((at.0 + out.0, at.1 + out.1), p(m.next(here)));
+        put(
+            (next_at.0 + out.0, next_at.1 + out.1),
+            p(m.next(m.next(here))),
+        );
+        // The diagonal quad runs the edge (corner k, neighbour's point) the
+        // other way.
+        let d = m.across(here).filter(|&d| quad(d))?;
+        let centre = m.next(d);
+        beside[k] = p(m.next(centre));
+        put(
+            (at.0 + out.0 + back.0, at.1 + out.1 + back.1),
+            p(m.next(m.next(centre))),
+        );
+        faces[1 + 2 * k] = m.corner_face[o as usize];
+        faces[2 + 2 * k] = m.corner_face[d as usize];
+    }
+    for (k, &b) in beside.iter().enumerate() {
+        let (at, back) = (CORNER[k], OUTWARD[(k + 3) % 4]);
+        if g[(4 * (at.0 + back.0) + at.1 + back.1) as usize] != b {
+            return None;
+        }
+    }
+    for i in 0..9 {
+        if faces[i + 1..].contains(&faces[i]) {
+            return None;
+        }
+    }
+    Some(g)
+}
+
+/// [`regular_grid`] by gathering each corner's sector and mirroring across
+/// infinitely sharp sides: every regular face.
+fn gathered_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16]> {
     let mut g: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
     let mut fan = Vec::with_capacity(8);
     let first = m.face_start[f];
@@ -189,5 +265,62 @@ fn put(g: &mut [[Option<u32>; 4]; 4], (i, j): (i32, i32), p: u32) -> Option<()> 
             *slot = Some(p);
             Some(())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::adaptive::base::tagged_base;
+    use crate::adaptive::refine::{refine, Rules};
+    use crate::input::EdgeCrease;
+    use crate::samples;
+
+    #[test]
+    fn corner_walk_grid_equals_the_gathered_grid() {
+        // Small tori wrap around (faces repeat in a neighbourhood); the
+        // crease and the boundary keep some faces off the corner walk; one
+        // refinement of everything adds the levels below the base.
+        let mut creased = samples::torus(6, 5);
+        let f0 = creased.faces[7].clone();
+        creased.tags.creases.push(EdgeCrease {
+            vertices: [f0[0], f0[1]],
+            sharpness: 1.5,
+        });
+        let meshes = [
+            samples::torus(3, 3),
+            samples::torus(4, 3),
+            creased,
+            samples::grid(5, 4),
+            samples::extraordinary_disk(5, 2),
+            samples::globe(8, 3),
+        ];
+        let (mut walked, mut gathered_only) = (0, 0);
+        for mesh in &meshes {
+            let base = tagged_base(mesh).level;
+            let mut points = Points::new(base.num_vertices() as u32);
+            let all: Vec<u32> = (0..base.num_faces() as u32).collect();
+            let child = refine(&base, &all, Rules::default(), &mut points).level;
+            for m in [&base, &child] {
+                for f in 0..m.num_faces() {
+                    let gathered = if m.face(f).len() == 4 {
+                        gathered_grid(m, f, &mut points)
+                    } else {
+                        None
+                    };
+                    match smooth_interior_grid(m, f) {
+                        Some(g) => {
+                            walked += 1;
+                            assert_eq!(Some(g), gathered, "face {f}");
+                        }
+                        None => gathered_only += usize::from(gathered.is_some()),
+                    }
+                }
+            }
+        }
+        assert!(
+            walked > 100 && gathered_only > 10,
+            "{walked} {gathered_only}"
+        );
     }
 }
