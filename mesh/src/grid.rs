@@ -230,6 +230,9 @@ fn step(p: (usize, usize), a: (isize, isize), b: (isize, isize)) -> (usize, usiz
 /// quad's far vertex. `None` where that shape is not there (the general
 /// path decides).
 pub fn interior_face_grid(t: &Topology, f: usize) -> Option<[[u32; 4]; 4]> {
+    if t.face_len(f) != 4 {
+        return None;
+    }
     let mut g = [[0u32; 4]; 4];
     let mut faces = [f as u32; 9];
     // Per corner: the diagonal quad's vertex next to the corner on the

@@ -40,11 +40,12 @@ use crate::adaptive::{self, AdaptiveOptions};
 use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
 use crate::chart::{Affine, FaceChart};
 use crate::error::MeshError;
-use crate::grid::{face_grid, Combo};
+use crate::grid::{face_grid, interior_face_grid, Combo};
 use crate::input::MeshInput;
 use crate::refine::{refine, PolarSeed};
 use crate::stencil::StencilTable;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
+use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -246,9 +247,16 @@ pub struct SurfacePlan<'t> {
     pub options: PlanOptions<'t>,
 }
 
+/// A regular face's control grid as the analysis found it: vertices only
+/// (an interior face, the common case, kept small), or with phantom points.
+enum RegularGrid {
+    Vertices([[u32; 4]; 4]),
+    Phantoms(Box<[[Combo; 4]; 4]>),
+}
+
 /// One analysis pass on one level.
 struct Pass {
-    regular: Vec<(u32, [[Combo; 4]; 4], u8)>,
+    regular: Vec<(u32, RegularGrid, u8)>,
     polar: Vec<PolarConfig>,
     ev: Vec<(EvConfig, Scheme, Option<usize>)>,
     /// Per face of the level: the reason it is uncovered, if it is.
@@ -467,7 +475,10 @@ impl<'t> SurfacePlan<'t> {
             let mut gather = [0u32; 16];
             for i in 0..4 {
                 for j in 0..4 {
-                    gather[4 * i + j] = self.point(&grid[i][j]);
+                    gather[4 * i + j] = match grid {
+                        RegularGrid::Vertices(g) => g[i][j],
+                        RegularGrid::Phantoms(g) => self.point(&g[i][j]),
+                    };
                 }
             }
             let mut finer = 0u8;
@@ -800,7 +811,11 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
             owner[f] = Some(Reason::Feature);
             continue;
         }
-        if let Some(grid) = face_grid(t, f) {
+        let grid = match interior_face_grid(t, f) {
+            Some(g) => Some(RegularGrid::Vertices(g)),
+            None => face_grid(t, f).map(|g| RegularGrid::Phantoms(Box::new(g))),
+        };
+        if let Some(grid) = grid {
             pass.regular.push((f as u32, grid, 0));
             covered[f] = true;
             continue;

@@ -153,18 +153,20 @@ impl Topology {
             out[fill[v] as usize] = h as u32;
             fill[v] += 1;
         }
+        // Destinations looked up once: the scans below read each several times.
+        let dest: Vec<u32> = (0..nh as u32).map(|h| self.dest(h)).collect();
         // In face order, so the error names the first offending face.
         for h in 0..nh {
             let v = self.corner_vertex[h] as usize;
-            let w = self.dest(h as u32) as usize;
+            let w = dest[h] as usize;
             // Other half-edges v→w (same direction) and w→v (opposite).
             let same = out[start[v] as usize..start[v + 1] as usize]
                 .iter()
-                .filter(|&&g| g != h as u32 && self.dest(g) as usize == w)
+                .filter(|&&g| g != h as u32 && dest[g as usize] as usize == w)
                 .count();
             let mut opposite = 0;
             for &g in &out[start[w] as usize..start[w + 1] as usize] {
-                if self.dest(g) as usize == v {
+                if dest[g as usize] as usize == v {
                     self.twin[h] = g;
                     opposite += 1;
                 }
