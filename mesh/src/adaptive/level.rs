@@ -191,25 +191,8 @@ impl Level {
     ) -> Level {
         let nv = point.len();
         let ne = edges.vertices.len();
-        let csr = |keys: &mut dyn Iterator<Item = (u32, u32)>, n: usize| {
-            let items: Vec<(u32, u32)> = keys.collect();
-            let mut start = vec![0u32; n + 1];
-            for &(k, _) in &items {
-                start[k as usize + 1] += 1;
-            }
-            for i in 0..n {
-                start[i + 1] += start[i];
-            }
-            let mut fill = start.clone();
-            let mut out = vec![0u32; items.len()];
-            for &(k, x) in &items {
-                out[fill[k as usize] as usize] = x;
-                fill[k as usize] += 1;
-            }
-            (start, out)
-        };
         let (edge_corner_start, edge_corners) = csr(
-            &mut faces
+            faces
                 .corner_edge
                 .iter()
                 .enumerate()
@@ -217,7 +200,7 @@ impl Level {
             ne,
         );
         let (vertex_corner_start, vertex_corners) = csr(
-            &mut faces
+            faces
                 .corner_vertex
                 .iter()
                 .enumerate()
@@ -227,7 +210,7 @@ impl Level {
         // Each edge at each of its ends: a degenerate edge twice, as
         // OpenSubdiv lists it.
         let (vertex_edge_start, vertex_edges) = csr(
-            &mut edges
+            edges
                 .vertices
                 .iter()
                 .enumerate()
@@ -530,4 +513,26 @@ impl Level {
         }
         true
     }
+}
+
+/// Compressed rows of `(key, item)` pairs over keys `0..n`: `(start, items)`,
+/// the items of key `k` at `items[start[k]..start[k + 1]]` in the pairs'
+/// order. Two passes over the pairs, no intermediate list.
+fn csr(pairs: impl Iterator<Item = (u32, u32)> + Clone, n: usize) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; n + 1];
+    let mut len = 0usize;
+    for (k, _) in pairs.clone() {
+        start[k as usize + 1] += 1;
+        len += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut out = vec![0u32; len];
+    for (k, x) in pairs {
+        out[fill[k as usize] as usize] = x;
+        fill[k as usize] += 1;
+    }
+    (start, out)
 }
