@@ -44,11 +44,11 @@ pub enum CliError {
         /// What was needed, in words (`"--scheme eg needs a 'cnet' or 'dnet' input"`).
         need: String,
     },
-    /// The valence the job needs exceeds every compiled capacity tier.
+    /// The valence the job needs exceeds [`crate::net::MAX_VALENCE`].
     Capacity {
         /// What was asked for, in words.
         what: String,
-        /// The largest tier.
+        /// The largest valence.
         max: usize,
     },
     /// The kernel refused the configuration.

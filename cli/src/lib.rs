@@ -7,8 +7,8 @@
 //!   dispatched on its `kind` tag (`polar` for C²PS, `cnet` and `dnet` for
 //!   EG, `mesh` for `capdiv surface`, which also reads Wavefront OBJ);
 //! - [`table`]: user rule tables for EG (`--table FILE`);
-//! - [`capacity`]: choosing a compile-time net capacity for the valence a job
-//!   needs (docs/math/c2ps.md §1: level `m` has valence `n·2^m`);
+//! - [`net`]: polar nets on heap storage sized for the valence a job
+//!   reaches (docs/math/c2ps.md §1: level `m` has valence `n·2^m`);
 //! - [`commands`]: one module per subcommand, each producing its output in
 //!   memory;
 //! - [`output`]: the serialisable output types and the all-or-nothing writers
@@ -34,7 +34,6 @@
 
 pub mod args;
 pub mod camera;
-pub mod capacity;
 pub mod commands;
 pub mod error;
 pub mod export;
@@ -42,6 +41,7 @@ pub mod focus;
 pub mod glyphs;
 pub mod input;
 pub mod mesh;
+pub mod net;
 pub mod obj;
 pub mod output;
 pub mod picture;

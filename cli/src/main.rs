@@ -1,12 +1,10 @@
-//! The `capdiv` binary: parses the command line, runs the command on a worker
-//! thread with a large stack (nets live on the stack, see
-//! [`capdiv_cli::capacity`]), then writes the output in one piece.
+//! The `capdiv` binary: parses the command line, runs the command, then
+//! writes the output in one piece.
 //!
 //! Every failure prints exactly one line `error: …` on stderr, nothing on
 //! stdout, and exits with status 2.
 
 use capdiv_cli::args::Cli;
-use capdiv_cli::capacity::WORK_STACK;
 use capdiv_cli::commands;
 use capdiv_cli::error::{CliError, EXIT_FAILURE};
 use clap::error::ErrorKind;
@@ -23,21 +21,7 @@ fn main() -> ExitCode {
         let msg = info.to_string().replace('\n', " ");
         eprintln!("error: internal error: {msg}");
     }));
-    let worker = std::thread::Builder::new()
-        .name("capdiv-work".into())
-        .stack_size(WORK_STACK)
-        .spawn(move || commands::run(cli.command));
-    let outcome = match worker {
-        Ok(handle) => match handle.join() {
-            Ok(result) => result,
-            // The panic hook has printed the message.
-            Err(_) => return ExitCode::from(EXIT_FAILURE as u8),
-        },
-        Err(e) => Err(CliError::Io {
-            path: "<worker thread>".into(),
-            message: e.to_string(),
-        }),
-    };
+    let outcome = commands::run(cli.command);
     match outcome.and_then(|o| o.write()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

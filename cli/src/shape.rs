@@ -19,12 +19,12 @@
 //! `v = 0` (as `capdiv_mesh::evaluate` marks them).
 
 use crate::args::{ShapeScheme, DEFAULT_MAX_PATCHES};
-use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::commands::eg::{cnet, subdivision};
 use crate::commands::polar::Config;
 use crate::commands::surface::check_size;
 use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
+use crate::net::{valence_after, NetStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
@@ -177,16 +177,15 @@ fn polar(name: &str, input: &PolarInput, depth: u32, rts: bool) -> Result<Shape,
     } else {
         valence_after(n, depth)
     };
-    dispatch(
-        needed,
-        || format!("valence n·2^M = {n}·2^{depth}"),
-        PolarJob {
-            name,
-            config: &config,
-            depth,
-            rts,
-        },
-    )
+    PolarJob {
+        name,
+        config: &config,
+        depth,
+        rts,
+    }
+    .run(NetStorage::for_valence(needed, || {
+        format!("valence n·2^M = {n}·2^{depth}")
+    })?)
 }
 
 struct PolarJob<'a> {
@@ -196,13 +195,12 @@ struct PolarJob<'a> {
     rts: bool,
 }
 
-impl NetJob<f64> for PolarJob<'_> {
-    type Output = Shape;
-    fn run<const CAP: usize>(self) -> Result<Shape, CliError> {
+impl PolarJob<'_> {
+    fn run(self, mut storage: NetStorage<f64>) -> Result<Shape, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let (pole, links) = (self.config.pole, &self.config.links);
-        let mut net = Box::new(PolarNet::<f64, CAP>::new(pole, links).map_err(kernel)?);
-        let jet = PoleJet::try_of(&net).map_err(kernel)?;
+        let mut net = storage.net(pole, links).map_err(kernel)?;
+        let jet = PoleJet::try_of_buf(&net).map_err(kernel)?;
         let limit = match jet.geometry() {
             Ok(g) => Limit::Known {
                 gaussian: g.gaussian,

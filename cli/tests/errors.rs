@@ -514,7 +514,7 @@ fn f32_overflow_is_not_finite() {
 fn capacity_exceeded() {
     let (pole, links) = config(6, 3, 4);
     let input = serde_json::to_string(&polar_json(pole, &links)).unwrap();
-    // 6·2^15 = 196608 > 131072 = largest tier; 6·2^14 = 98304 fits.
+    // 6·2^15 = 196608 > 131072 = the largest valence; 6·2^14 = 98304 fits.
     let msg = "exceeds the largest supported capacity 131072";
     fails(
         &["refine", "--steps", "15", "-"],

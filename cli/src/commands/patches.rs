@@ -35,16 +35,16 @@ use super::polar::Config;
 use super::Outcome;
 use crate::args::{FirstStepArg, PatchFormat, PatchesArgs, Precision};
 use crate::camera::Up;
-use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
 use crate::mesh::Mesh;
+use crate::net::{valence_after, NetStorage};
 use crate::obj::to_obj;
 use crate::output::{indent, temporary_sibling, to_json, LeveledPatch, PatchOutput, Sink, Target};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
 use crate::Scalar;
-use capdiv::{FirstStep, OuterRegion, PolarNet, PolarStream, StreamOptions};
+use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions};
 use std::io::Write;
 
 /// The patches of a configuration through some depth, `K×K` control points
@@ -250,16 +250,15 @@ pub fn collect<R: Scalar>(
 ) -> Result<PatchSet<R, 4>, CliError> {
     let config = Config::<R>::of(input);
     let n = config.valence();
-    let set = dispatch(
-        valence_after(n, depth),
-        || format!("valence n·2^M = {n}·2^{depth}"),
-        Job {
-            name,
-            config: &config,
-            depth,
-            first,
-        },
-    )?;
+    let set = Job {
+        name,
+        config: &config,
+        depth,
+        first,
+    }
+    .run(NetStorage::for_valence(valence_after(n, depth), || {
+        format!("valence n·2^M = {n}·2^{depth}")
+    })?)?;
     check_finite(name, set)
 }
 
@@ -270,12 +269,11 @@ struct Job<'a, R> {
     first: FirstStep,
 }
 
-impl<R: Scalar> NetJob<R> for Job<'_, R> {
-    type Output = PatchSet<R, 4>;
-    fn run<const CAP: usize>(self) -> Result<PatchSet<R, 4>, CliError> {
+impl<R: Scalar> Job<'_, R> {
+    fn run(self, mut storage: NetStorage<R>) -> Result<PatchSet<R, 4>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let (pole, links) = (self.config.pole, &self.config.links);
-        let mut net = PolarNet::<R, CAP>::new(pole, links).map_err(kernel)?;
+        let mut net = storage.net(pole, links).map_err(kernel)?;
         let outer = OuterRegion::new(pole, links).map_err(kernel)?;
         let mut patches: Vec<LeveledPatch<R, 4>> = outer
             .patches()

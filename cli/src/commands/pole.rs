@@ -12,12 +12,12 @@ use super::eg::{cnet, dnet_of};
 use super::polar::Config;
 use super::Outcome;
 use crate::args::{PoleArgs, Precision};
-use crate::capacity::{dispatch, NetJob};
 use crate::error::CliError;
 use crate::input::{Input, PolarInput, Source};
+use crate::net::NetStorage;
 use crate::output::{to_json, EgPoleOutput, PoleOutput, Sink};
 use crate::Scalar;
-use capdiv::{PolarNet, PoleJet};
+use capdiv::PoleJet;
 
 /// Runs the command.
 pub fn run(args: &PoleArgs) -> Result<Outcome, CliError> {
@@ -63,14 +63,11 @@ pub fn eg_limit<R: Scalar>(name: &str, input: &Input) -> Result<EgPoleOutput<R>,
 pub fn pole<R: Scalar>(name: &str, input: &PolarInput) -> Result<PoleOutput<R>, CliError> {
     let config = Config::<R>::of(input);
     let n = config.valence();
-    let out = dispatch(
-        Some(n),
-        || format!("valence {n}"),
-        Job {
-            name,
-            config: &config,
-        },
-    )?;
+    let out = Job {
+        name,
+        config: &config,
+    }
+    .run(NetStorage::for_valence(Some(n), || format!("valence {n}"))?)?;
     if !out.is_finite() {
         return Err(CliError::NonFiniteResult {
             source: name.to_string(),
@@ -84,12 +81,13 @@ struct Job<'a, R> {
     config: &'a Config<R>,
 }
 
-impl<R: Scalar> NetJob<R> for Job<'_, R> {
-    type Output = PoleOutput<R>;
-    fn run<const CAP: usize>(self) -> Result<PoleOutput<R>, CliError> {
+impl<R: Scalar> Job<'_, R> {
+    fn run(self, mut storage: NetStorage<R>) -> Result<PoleOutput<R>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
-        let net = PolarNet::<R, CAP>::new(self.config.pole, &self.config.links).map_err(kernel)?;
-        let jet = PoleJet::of(&net);
+        let net = storage
+            .net(self.config.pole, &self.config.links)
+            .map_err(kernel)?;
+        let jet = PoleJet::of_buf(&net);
         let geometry = jet.geometry().map_err(kernel)?;
         Ok(PoleOutput::new(&jet, &geometry))
     }

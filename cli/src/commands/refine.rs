@@ -15,13 +15,13 @@ use super::eg::{dnet, read_table, subdivision};
 use super::polar::Config;
 use super::Outcome;
 use crate::args::{FirstStepArg, Precision, RefineArgs, Scheme};
-use crate::capacity::{dispatch, valence_after, NetJob};
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
+use crate::net::{valence_after, NetStorage};
 use crate::output::{to_json, DnetOutput, PolarOutput, Sink};
 use crate::table::Table;
 use crate::Scalar;
-use capdiv::{FirstStep, PolarNet};
+use capdiv::FirstStep;
 
 /// The option combinations a scheme refuses (checked before and after the
 /// input decides the default scheme).
@@ -136,17 +136,16 @@ pub fn refine<R: Scalar>(
         Scheme::C2ps => valence_after(n, steps),
         Scheme::Rts | Scheme::Eg => Some(n),
     };
-    let out = dispatch(
-        needed,
-        || format!("valence n·2^M = {n}·2^{steps}"),
-        Job {
-            name,
-            config: &config,
-            scheme,
-            steps,
-            first,
-        },
-    )?;
+    let out = Job {
+        name,
+        config: &config,
+        scheme,
+        steps,
+        first,
+    }
+    .run(NetStorage::for_valence(needed, || {
+        format!("valence n·2^M = {n}·2^{steps}")
+    })?)?;
     if !out.is_finite() {
         return Err(CliError::NonFiniteResult {
             source: name.to_string(),
@@ -163,12 +162,12 @@ struct Job<'a, R> {
     first: FirstStep,
 }
 
-impl<R: Scalar> NetJob<R> for Job<'_, R> {
-    type Output = PolarOutput<R>;
-    fn run<const CAP: usize>(self) -> Result<PolarOutput<R>, CliError> {
+impl<R: Scalar> Job<'_, R> {
+    fn run(self, mut storage: NetStorage<R>) -> Result<PolarOutput<R>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
-        let mut net =
-            PolarNet::<R, CAP>::new(self.config.pole, &self.config.links).map_err(kernel)?;
+        let mut net = storage
+            .net(self.config.pole, &self.config.links)
+            .map_err(kernel)?;
         for _ in 0..self.steps {
             match self.scheme {
                 Scheme::C2ps => net.step(self.first).map_err(kernel)?,
