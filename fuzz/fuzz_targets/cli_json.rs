@@ -130,19 +130,7 @@ fn mesh(text: &str, depth: u32) {
     not_nonfinite(&r32, fin, "surface f32");
 }
 
-fuzz_target!(|data: &[u8]| {
-    // The CLI runs its jobs on a thread with a large stack (polar nets live
-    // on the stack, `capacity::WORK_STACK`); so does this target. A panic
-    // there aborts through libFuzzer's panic hook like one on the main thread.
-    let data = data.to_vec();
-    let worker = std::thread::Builder::new()
-        .stack_size(capdiv_cli::capacity::WORK_STACK)
-        .spawn(move || one(&data))
-        .expect("spawn worker");
-    if let Err(panic) = worker.join() {
-        std::panic::resume_unwind(panic);
-    }
-});
+fuzz_target!(|data: &[u8]| one(data));
 
 fn one(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
