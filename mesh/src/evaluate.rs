@@ -13,12 +13,12 @@
 
 use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
+use crate::mem;
 use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
 use crate::tessellate::PatchGeometry;
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
-use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::eg::{CNet, EgSubdivision, FourierRule, PatchDomain, RuleTable};
@@ -153,6 +153,17 @@ pub enum EvalError {
         /// The kernel's error.
         error: Error,
     },
+    /// A buffer of the evaluation could not be allocated.
+    OutOfMemory {
+        /// The size asked for.
+        bytes: usize,
+    },
+}
+
+impl From<crate::mem::OutOfMemory> for EvalError {
+    fn from(e: crate::mem::OutOfMemory) -> Self {
+        EvalError::OutOfMemory { bytes: e.bytes }
+    }
 }
 
 impl EvalError {
@@ -188,6 +199,9 @@ impl EvalError {
                 }
                 (None, None) => format!("a cap: {error}"),
             },
+            EvalError::OutOfMemory { bytes } => {
+                crate::mem::OutOfMemory { bytes: *bytes }.message()
+            }
         }
     }
 }
@@ -228,7 +242,8 @@ pub struct Evaluator<R: Real> {
 
 impl<R: Real> Evaluator<R> {
     /// Sizes every buffer for `plan`. [`EvalError::CapacityExceeded`] when a
-    /// polar cap's deepest valence exceeds the largest tier.
+    /// polar cap's deepest valence exceeds the largest tier,
+    /// [`EvalError::OutOfMemory`] when a buffer cannot be allocated.
     pub fn new(plan: &SurfacePlan<'_>) -> Result<Self, EvalError> {
         let depth = plan.options.depth;
         let mut need = 0usize;
@@ -244,20 +259,21 @@ impl<R: Real> Evaluator<R> {
                 }
             }
         }
-        let mut levels = vec![vec![Point3::ZERO; plan.input_vertices]];
+        let mut levels = mem::with_capacity(plan.steps.len() + 1)?;
+        levels.push(mem::filled(plan.input_vertices, Point3::ZERO)?);
         for s in &plan.steps {
-            levels.push(vec![Point3::ZERO; s.len()]);
+            levels.push(mem::filled(s.len(), Point3::ZERO)?);
         }
         let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
         let max_ev = plan.ev.iter().map(|e| e.sectors.len()).max().unwrap_or(0);
         Ok(Evaluator {
             levels,
-            work: vec![Point3::ZERO; plan.working_points()],
-            polar_links: vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(need)],
-            polar_roots: vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(need)],
-            links: vec![[R::ZERO; 3]; 3 * max_n],
-            cnet: vec![[R::ZERO; 3]; 6 * max_ev],
-            cc: vec![Point3::ZERO; CcCap::<R>::storage_len(max_ev.max(3))],
+            work: mem::filled(plan.working_points(), Point3::ZERO)?,
+            polar_links: mem::filled(PolarNetBuf::<R>::link_storage_len(need), Point3::ZERO)?,
+            polar_roots: mem::filled(PolarNetBuf::<R>::root_storage_len(need), [R::ZERO; 2])?,
+            links: mem::filled(3 * max_n, [R::ZERO; 3])?,
+            cnet: mem::filled(6 * max_ev, [R::ZERO; 3])?,
+            cc: mem::filled(CcCap::<R>::storage_len(max_ev.max(3)), Point3::ZERO)?,
             eg: Box::new(EgSubdivision::empty()),
             eg_rules: [3, 5]
                 .into_iter()

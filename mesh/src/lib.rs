@@ -66,6 +66,7 @@ pub mod error;
 pub mod evaluate;
 pub mod grid;
 pub mod input;
+pub mod mem;
 pub mod obj;
 pub mod plan;
 pub mod refine;
@@ -82,6 +83,7 @@ pub use input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
     VertexCorner,
 };
+pub use mem::OutOfMemory;
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
 pub use stencil::StencilTable;
 pub use topology::Topology;

@@ -39,6 +39,19 @@ impl StencilTable {
         (self.offsets.len() - 2) as u32
     }
 
+    /// Room for `rows` more rows of `entries` entries in all, reserved
+    /// fallibly so that the pushes that follow do not allocate.
+    pub fn try_reserve(
+        &mut self,
+        rows: usize,
+        entries: usize,
+    ) -> Result<(), crate::mem::OutOfMemory> {
+        let first = usize::from(self.offsets.is_empty());
+        crate::mem::reserve(&mut self.offsets, rows + first)?;
+        crate::mem::reserve(&mut self.indices, entries)?;
+        crate::mem::reserve(&mut self.weights, entries)
+    }
+
     /// Number of rows.
     pub fn len(&self) -> usize {
         self.offsets.len().saturating_sub(1)

@@ -402,6 +402,14 @@ pub fn build_scheme<R: Scalar>(
         patches: Vec::new(),
         caps: Vec::new(),
     };
+    // The surface's patches are held until the output is written: reserved
+    // at once, so that a surface too large for memory is an error.
+    let patches = usize::try_from(plan.patch_count()).unwrap_or(usize::MAX);
+    capdiv_mesh::mem::reserve_exact(&mut sink.patches, patches)
+        .and_then(|()| {
+            capdiv_mesh::mem::reserve_exact(&mut sink.caps, plan.polar.len() + plan.ev.len())
+        })
+        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
     evaluator
         .evaluate(&plan, &positions, &mut sink)
         .map_err(eval_err)?;
