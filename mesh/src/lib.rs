@@ -68,6 +68,8 @@ pub mod grid;
 pub mod input;
 pub mod mem;
 pub mod obj;
+#[cfg(feature = "parallel")]
+pub mod parallel;
 pub mod plan;
 pub mod refine;
 pub mod samples;

@@ -89,7 +89,15 @@ impl StencilTable {
     /// [`Self::len`] entries and `src` at least [`Self::source_len`]; the
     /// analysis guarantees both (rows past `out`'s end are skipped).
     pub fn apply<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
-        for (i, o) in out.iter_mut().enumerate().take(self.len()) {
+        self.apply_from(src, out, 0);
+    }
+
+    /// [`Self::apply`] for rows `first..first + out.len()`, writing row
+    /// `first + k` to `out[k]`: a part of the output, for one thread.
+    pub fn apply_from<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>], first: usize) {
+        let rows = self.len().saturating_sub(first);
+        for (k, o) in out.iter_mut().enumerate().take(rows) {
+            let i = first + k;
             let mut acc = Point3::ZERO;
             for (idx, w) in self.row(i) {
                 if let Some(p) = src.get(idx as usize) {
