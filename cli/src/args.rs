@@ -584,6 +584,11 @@ pub struct SurfaceArgs {
     /// `patches`).
     #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PATCHES)]
     pub max_patches: u64,
+    /// Threads that evaluate the surface [default: the available
+    /// parallelism]; 1 evaluates on the calling thread. The output is the
+    /// same, bit for bit, for every count.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
     /// Do not print the summary on stderr.
     #[arg(long)]
     pub quiet: bool,

@@ -87,6 +87,14 @@ pub enum CliError {
         /// The input's name.
         source: String,
     },
+    /// An allocation could not be made (the analysis', the evaluation's or
+    /// the output's).
+    OutOfMemory {
+        /// The input's name.
+        source: String,
+        /// The size asked for.
+        bytes: usize,
+    },
     /// The surface would have more patches than allowed (`--max-patches`):
     /// refused after the analysis, before any patch is made.
     TooLarge {
@@ -143,6 +151,9 @@ impl CliError {
     /// A mesh error of `source`, named by 0-based indices until
     /// [`CliError::named`].
     pub fn mesh(source: &str, error: capdiv_mesh::MeshError) -> Self {
+        if let capdiv_mesh::MeshError::OutOfMemory { bytes } = error {
+            return CliError::out_of_memory(source, bytes);
+        }
         CliError::Mesh {
             source: source.to_string(),
             error,
@@ -153,6 +164,9 @@ impl CliError {
     /// An evaluation error of `source`, named by 0-based indices until
     /// [`CliError::named`].
     pub fn eval(source: &str, error: capdiv_mesh::EvalError) -> Self {
+        if let capdiv_mesh::EvalError::OutOfMemory { bytes } = error {
+            return CliError::out_of_memory(source, bytes);
+        }
         CliError::Eval {
             source: source.to_string(),
             error,
@@ -175,6 +189,14 @@ impl CliError {
                 naming: naming.clone(),
             },
             other => other,
+        }
+    }
+
+    /// An allocation of `bytes` bytes for `source` failed.
+    pub fn out_of_memory(source: &str, bytes: usize) -> Self {
+        CliError::OutOfMemory {
+            source: source.to_string(),
+            bytes,
         }
     }
 
@@ -223,6 +245,11 @@ impl fmt::Display for CliError {
             CliError::EmptySurface { source } => write!(
                 f,
                 "{source}: the surface is empty (every face is a hole, or the boundary rule 'none' removed them all)"
+            ),
+            CliError::OutOfMemory { source, bytes } => write!(
+                f,
+                "{source}: {}",
+                capdiv_mesh::OutOfMemory { bytes: *bytes }
             ),
             CliError::TooLarge {
                 source,

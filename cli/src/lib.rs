@@ -51,6 +51,7 @@ pub mod shape;
 pub mod stripes;
 pub mod table;
 pub mod text;
+pub mod threads;
 
 pub use error::CliError;
 
@@ -60,7 +61,10 @@ pub use error::CliError;
 /// representation that round-trips, so JSON and OBJ output can be read back
 /// exactly.
 pub trait Scalar:
-    capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp
+    capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp + Send + Sync
 {
 }
-impl<T: capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp> Scalar for T {}
+impl<T> Scalar for T where
+    T: capdiv::Real + serde::Serialize + core::fmt::Display + core::fmt::LowerExp + Send + Sync
+{
+}

@@ -108,6 +108,17 @@ pub enum MeshError {
         /// How many there are.
         count: usize,
     },
+    /// An allocation of the analysis could not be made.
+    OutOfMemory {
+        /// The size asked for.
+        bytes: usize,
+    },
+}
+
+impl From<crate::mem::OutOfMemory> for MeshError {
+    fn from(e: crate::mem::OutOfMemory) -> Self {
+        MeshError::OutOfMemory { bytes: e.bytes }
+    }
 }
 
 impl MeshError {
@@ -161,6 +172,7 @@ impl MeshError {
             MeshError::TagOutOfRange { what, index, count } => {
                 format!("a tag names {what} {index}, but the mesh has {count} {what}s (0-based)")
             }
+            MeshError::OutOfMemory { bytes } => crate::mem::OutOfMemory { bytes: *bytes }.message(),
         }
     }
 }

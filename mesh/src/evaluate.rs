@@ -13,12 +13,12 @@
 
 use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
+use crate::mem;
 use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
 use crate::tessellate::PatchGeometry;
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
-use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::eg::{CNet, EgSubdivision, FourierRule, PatchDomain, RuleTable};
@@ -153,6 +153,17 @@ pub enum EvalError {
         /// The kernel's error.
         error: Error,
     },
+    /// A buffer of the evaluation could not be allocated.
+    OutOfMemory {
+        /// The size asked for.
+        bytes: usize,
+    },
+}
+
+impl From<crate::mem::OutOfMemory> for EvalError {
+    fn from(e: crate::mem::OutOfMemory) -> Self {
+        EvalError::OutOfMemory { bytes: e.bytes }
+    }
 }
 
 impl EvalError {
@@ -188,6 +199,9 @@ impl EvalError {
                 }
                 (None, None) => format!("a cap: {error}"),
             },
+            EvalError::OutOfMemory { bytes } => {
+                crate::mem::OutOfMemory { bytes: *bytes }.message()
+            }
         }
     }
 }
@@ -212,53 +226,63 @@ pub struct Evaluator<R: Real> {
     /// Points of each refinement level (level 0: the input positions).
     levels: Vec<Vec<Point3<R>>>,
     /// The analysed level's vertices followed by the phantom points.
-    work: Vec<Point3<R>>,
-    /// Storage of the polar nets (links 1..5, roots), sized for the largest
-    /// cap of the plan and reused by every cap.
+    pub(crate) work: Vec<Point3<R>>,
+    /// The caps' buffers.
+    pub(crate) scratch: Scratch<R>,
+    /// Rule (7) in the Fourier basis for each built-in EG valence the plan
+    /// has (n = 3, 5), built once: the caps' fast step.
+    pub(crate) eg_rules: Vec<FourierRule<'static, R>>,
+    /// Further caps' buffers, one per extra thread of
+    /// `Evaluator::evaluate_parallel` (empty until it runs).
+    #[cfg_attr(not(feature = "parallel"), allow(dead_code))]
+    pub(crate) extra: Vec<Scratch<R>>,
+}
+
+/// The buffers a cap is evaluated in, sized for the largest cap of a plan
+/// and reused by every cap.
+pub(crate) struct Scratch<R: Real> {
+    /// Storage of the polar nets (links 1..5, roots).
     polar_links: Vec<Point3<R>>,
     polar_roots: Vec<[R; 2]>,
     links: Vec<[R; 3]>,
     cnet: Vec<[R; 3]>,
     cc: Vec<Point3<R>>,
     eg: Box<EgSubdivision<'static, R>>,
-    /// Rule (7) in the Fourier basis for each built-in EG valence the plan
-    /// has (n = 3, 5), built once: the caps' fast step.
-    eg_rules: Vec<FourierRule<'static, R>>,
+}
+
+impl<R: Real> Scratch<R> {
+    /// Buffers for the caps of `plan`; `need` is the largest polar capacity
+    /// ([`PolarNetBuf::capacity_for`]).
+    pub(crate) fn new(plan: &SurfacePlan<'_>, need: usize) -> Result<Self, EvalError> {
+        let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
+        let max_ev = plan.ev.iter().map(|e| e.sectors.len()).max().unwrap_or(0);
+        Ok(Scratch {
+            polar_links: mem::filled(PolarNetBuf::<R>::link_storage_len(need), Point3::ZERO)?,
+            polar_roots: mem::filled(PolarNetBuf::<R>::root_storage_len(need), [R::ZERO; 2])?,
+            links: mem::filled(3 * max_n, [R::ZERO; 3])?,
+            cnet: mem::filled(6 * max_ev, [R::ZERO; 3])?,
+            cc: mem::filled(CcCap::<R>::storage_len(max_ev.max(3)), Point3::ZERO)?,
+            eg: Box::new(EgSubdivision::empty()),
+        })
+    }
 }
 
 impl<R: Real> Evaluator<R> {
     /// Sizes every buffer for `plan`. [`EvalError::CapacityExceeded`] when a
-    /// polar cap's deepest valence exceeds the largest tier.
+    /// polar cap's deepest valence exceeds the largest tier,
+    /// [`EvalError::OutOfMemory`] when a buffer cannot be allocated.
     pub fn new(plan: &SurfacePlan<'_>) -> Result<Self, EvalError> {
-        let depth = plan.options.depth;
-        let mut need = 0usize;
-        for p in &plan.polar {
-            match PolarNetBuf::<R>::capacity_for(p.valence, depth) {
-                Some(x) if x <= MAX_POLAR_VALENCE => need = need.max(x),
-                other => {
-                    return Err(EvalError::CapacityExceeded {
-                        vertex: p.vertex,
-                        needed: other.unwrap_or(usize::MAX),
-                        max: MAX_POLAR_VALENCE,
-                    })
-                }
-            }
-        }
-        let mut levels = vec![vec![Point3::ZERO; plan.input_vertices]];
+        let need = polar_need::<R>(plan)?;
+        let mut levels = mem::with_capacity(plan.steps.len() + 1)?;
+        levels.push(mem::filled(plan.input_vertices, Point3::ZERO)?);
         for s in &plan.steps {
-            levels.push(vec![Point3::ZERO; s.len()]);
+            levels.push(mem::filled(s.len(), Point3::ZERO)?);
         }
-        let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
-        let max_ev = plan.ev.iter().map(|e| e.sectors.len()).max().unwrap_or(0);
         Ok(Evaluator {
             levels,
-            work: vec![Point3::ZERO; plan.working_points()],
-            polar_links: vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(need)],
-            polar_roots: vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(need)],
-            links: vec![[R::ZERO; 3]; 3 * max_n],
-            cnet: vec![[R::ZERO; 3]; 6 * max_ev],
-            cc: vec![Point3::ZERO; CcCap::<R>::storage_len(max_ev.max(3))],
-            eg: Box::new(EgSubdivision::empty()),
+            work: mem::filled(plan.working_points(), Point3::ZERO)?,
+            scratch: Scratch::new(plan, need)?,
+            extra: Vec::new(),
             eg_rules: [3, 5]
                 .into_iter()
                 .filter(|&n| {
@@ -278,6 +302,30 @@ impl<R: Real> Evaluator<R> {
         positions: &[[R; 3]],
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
+        self.prepare(plan, positions, |s, src, out| s.apply(src, out))?;
+        emit_regular(plan, &self.work, 0..plan.regular.len(), sink);
+        for (index, p) in plan.polar.iter().enumerate() {
+            let work = &self.work;
+            self.scratch.polar_cap(work, plan, p, index as u32, sink)?;
+        }
+        let base = plan.polar.len() as u32;
+        for (index, e) in plan.ev.iter().enumerate() {
+            let (work, rules) = (&self.work, &self.eg_rules);
+            self.scratch
+                .ev_cap(work, rules, plan, e, base + index as u32, sink)?;
+        }
+        Ok(())
+    }
+
+    /// Checks `positions` and computes the working points (refinement
+    /// steps through `apply`, phantom points) that every patch and cap
+    /// gathers from.
+    pub(crate) fn prepare(
+        &mut self,
+        plan: &SurfacePlan<'_>,
+        positions: &[[R; 3]],
+        apply: impl Fn(&crate::StencilTable, &[Point3<R>], &mut [Point3<R>]),
+    ) -> Result<(), EvalError> {
         if positions.len() != plan.input_vertices || self.levels[0].len() != positions.len() {
             return Err(EvalError::WrongLength {
                 expected: plan.input_vertices,
@@ -295,7 +343,7 @@ impl<R: Real> Evaluator<R> {
         }
         for (k, s) in plan.steps.iter().enumerate() {
             let (src, dst) = self.levels.split_at_mut(k + 1);
-            s.apply(&src[k], &mut dst[0]);
+            apply(s, &src[k], &mut dst[0]);
         }
         let last = self.levels.last().map(Vec::as_slice).unwrap_or(&[]);
         let split = plan.vertices.min(self.work.len());
@@ -312,47 +360,71 @@ impl<R: Real> Evaluator<R> {
         if !probe.is_finite() {
             return Err(EvalError::Overflow);
         }
-
-        let level0 = plan.steps.len() as u32;
-        for r in &plan.regular {
-            let mut d = [[Point3::ZERO; 4]; 4];
-            for (i, row) in d.iter_mut().enumerate() {
-                for (j, p) in row.iter_mut().enumerate() {
-                    *p = self.work[r.gather[4 * i + j] as usize];
-                }
-            }
-            let patch = TensorPatch {
-                points: bspline_to_bezier_cubic(&d),
-            };
-            let hole_point = if r.hole != 0 {
-                self.work[r.hole_point as usize]
-            } else {
-                Point3::ZERO
-            };
-            sink.patch(&record(
-                PatchKind::Regular,
-                level0 + r.level,
-                &r.chart,
-                [0.0, 1.0, 0.0, 1.0],
-                patch,
-                r.finer,
-                r.hole,
-                hole_point,
-                None,
-            ));
-        }
-        for (index, p) in plan.polar.iter().enumerate() {
-            self.polar_cap(plan, p, index as u32, sink)?;
-        }
-        let base = plan.polar.len() as u32;
-        for (index, e) in plan.ev.iter().enumerate() {
-            self.ev_cap(plan, e, base + index as u32, sink)?;
-        }
         Ok(())
     }
+}
 
-    fn polar_cap(
+/// The largest polar net capacity the caps of `plan` need.
+pub(crate) fn polar_need<R: Real>(plan: &SurfacePlan<'_>) -> Result<usize, EvalError> {
+    let depth = plan.options.depth;
+    let mut need = 0usize;
+    for p in &plan.polar {
+        match PolarNetBuf::<R>::capacity_for(p.valence, depth) {
+            Some(x) if x <= MAX_POLAR_VALENCE => need = need.max(x),
+            other => {
+                return Err(EvalError::CapacityExceeded {
+                    vertex: p.vertex,
+                    needed: other.unwrap_or(usize::MAX),
+                    max: MAX_POLAR_VALENCE,
+                })
+            }
+        }
+    }
+    Ok(need)
+}
+
+/// The patches of the regular faces `range` of `plan`, in order.
+pub(crate) fn emit_regular<R: Real>(
+    plan: &SurfacePlan<'_>,
+    work: &[Point3<R>],
+    range: core::ops::Range<usize>,
+    sink: &mut dyn SurfaceSink<R>,
+) {
+    let level0 = plan.steps.len() as u32;
+    for r in &plan.regular[range] {
+        let mut d = [[Point3::ZERO; 4]; 4];
+        for (i, row) in d.iter_mut().enumerate() {
+            for (j, p) in row.iter_mut().enumerate() {
+                *p = work[r.gather[4 * i + j] as usize];
+            }
+        }
+        let patch = TensorPatch {
+            points: bspline_to_bezier_cubic(&d),
+        };
+        let hole_point = if r.hole != 0 {
+            work[r.hole_point as usize]
+        } else {
+            Point3::ZERO
+        };
+        sink.patch(&record(
+            PatchKind::Regular,
+            level0 + r.level,
+            &r.chart,
+            [0.0, 1.0, 0.0, 1.0],
+            patch,
+            r.finer,
+            r.hole,
+            hole_point,
+            None,
+        ));
+    }
+}
+
+impl<R: Real> Scratch<R> {
+    /// Emits polar cap `index` (`p`), gathering from the working points.
+    pub(crate) fn polar_cap(
         &mut self,
+        work: &[Point3<R>],
         plan: &SurfacePlan<'_>,
         p: &PolarPlan,
         index: u32,
@@ -366,9 +438,9 @@ impl<R: Real> Evaluator<R> {
             error,
         };
         for (d, &i) in self.links.iter_mut().zip(&p.links) {
-            *d = self.work[i as usize].0;
+            *d = work[i as usize].0;
         }
-        let pole = self.work[p.pole as usize].0;
+        let pole = work[p.pole as usize].0;
         let depth = plan.options.depth;
         let n_in = n >> p.pre;
         let (l1, rest) = self.links.split_at(n.min(self.links.len()));
@@ -445,8 +517,12 @@ impl<R: Real> Evaluator<R> {
         Ok(())
     }
 
-    fn ev_cap(
+    /// Emits EG or Catmull-Clark cap `index` (`e`), gathering from the
+    /// working points.
+    pub(crate) fn ev_cap(
         &mut self,
+        work: &[Point3<R>],
+        eg_rules: &[FourierRule<'static, R>],
         plan: &SurfacePlan<'_>,
         e: &EvPlan,
         index: u32,
@@ -460,9 +536,9 @@ impl<R: Real> Evaluator<R> {
             error,
         };
         for (d, &i) in self.cnet.iter_mut().zip(&e.nodes) {
-            *d = self.work[i as usize].0;
+            *d = work[i as usize].0;
         }
-        let center = self.work[e.center as usize].0;
+        let center = work[e.center as usize].0;
         let nodes = &self.cnet[..6 * n];
         let depth = plan.options.depth;
         let level0 = e.level;
@@ -528,7 +604,7 @@ impl<R: Real> Evaluator<R> {
                     None => {
                         self.eg.reset_from_cnet(&net).map_err(kernel)?;
                         let n = self.eg.valence();
-                        let rule = self.eg_rules.iter().find(|r| r.valence() == n);
+                        let rule = eg_rules.iter().find(|r| r.valence() == n);
                         run_eg(&mut self.eg, rule, depth, sink, &emit, e, index)?;
                     }
                 }

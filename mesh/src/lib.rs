@@ -66,7 +66,10 @@ pub mod error;
 pub mod evaluate;
 pub mod grid;
 pub mod input;
+pub mod mem;
 pub mod obj;
+#[cfg(feature = "parallel")]
+pub mod parallel;
 pub mod plan;
 pub mod refine;
 pub mod samples;
@@ -82,6 +85,7 @@ pub use input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
     VertexCorner,
 };
+pub use mem::OutOfMemory;
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
 pub use stencil::StencilTable;
 pub use topology::Topology;

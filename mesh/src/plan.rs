@@ -42,12 +42,12 @@ use crate::chart::{Affine, FaceChart};
 use crate::error::MeshError;
 use crate::grid::{face_grid, interior_face_grid, Combo};
 use crate::input::MeshInput;
-use crate::refine::{refine, PolarSeed};
+use crate::mem;
+use crate::refine::{try_refine, PolarSeed};
 use crate::stencil::StencilTable;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
-use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::eg::RuleTable;
 use capdiv::FirstStep;
@@ -324,21 +324,22 @@ impl<'t> SurfacePlan<'t> {
             .map(Topology::num_faces)
             .or(tagged.as_ref().map(|b| b.level.num_faces()))
             .unwrap_or(0);
-        let mut charts: Vec<FaceChart> = (0..input_faces as u32).map(FaceChart::input).collect();
+        let mut charts: Vec<FaceChart> =
+            mem::collect((0..input_faces as u32).map(FaceChart::input))?;
         let mut steps = Vec::new();
         let mut needed = Vec::new();
         let mut level_topo = topo.cloned();
         // Per vertex at the current level: has it been a C²PS pole (refined by
         // the step), and how often.
-        let mut pole_steps: Vec<u32> = vec![0; num_vertices];
+        let mut pole_steps: Vec<u32> = mem::filled(num_vertices, 0)?;
         let clean = tagged.as_ref().map(|b| b.clean.as_slice());
         let mut pass = match &level_topo {
-            Some(t) => analyse(t, &options, clean),
+            Some(t) => analyse(t, &options, clean)?,
             None => Pass {
                 regular: Vec::new(),
                 polar: Vec::new(),
                 ev: Vec::new(),
-                uncovered: vec![Some(Reason::Feature); input_faces],
+                uncovered: mem::filled(input_faces, Some(Reason::Feature))?,
                 fallbacks: Vec::new(),
             },
         };
@@ -382,8 +383,8 @@ impl<'t> SurfacePlan<'t> {
                     quads: c.quads.clone(),
                 })
                 .collect();
-            let refined = refine(t, &charts, &seeds);
-            let mut new_pole_steps = vec![0; refined.num_vertices];
+            let refined = try_refine(t, &charts, &seeds)?;
+            let mut new_pole_steps = mem::filled(refined.num_vertices, 0)?;
             for (seed, &p) in seeds.iter().zip(&refined.poles) {
                 new_pole_steps[p as usize] = pole_steps[seed.pole as usize] + 1;
             }
@@ -391,7 +392,7 @@ impl<'t> SurfacePlan<'t> {
             charts = refined.charts;
             steps.push(refined.stencils);
             pole_steps = new_pole_steps;
-            pass = analyse(&next, &options, None);
+            pass = analyse(&next, &options, None)?;
             level_topo = Some(next);
         }
         if steps.is_empty() {
@@ -420,7 +421,7 @@ impl<'t> SurfacePlan<'t> {
         };
         let level_faces = charts.len();
         let cap_face: Vec<bool> = {
-            let mut c = vec![false; level_faces];
+            let mut c = mem::filled(level_faces, false)?;
             for p in &pass.polar {
                 for &f in p.triangles.iter().chain(&p.quads) {
                     c[f as usize] = true;
@@ -434,6 +435,9 @@ impl<'t> SurfacePlan<'t> {
             c
         };
         if let Some(level_topo) = &level_topo {
+            mem::reserve(&mut plan.regular, pass.regular.len())?;
+            mem::reserve(&mut plan.polar, pass.polar.len())?;
+            mem::reserve(&mut plan.ev, pass.ev.len())?;
             plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
         }
         // Every other face: adaptive refinement over the analysed level
@@ -446,14 +450,14 @@ impl<'t> SurfacePlan<'t> {
                     plain_base(t)
                 }
             };
-            let roots: Vec<(u32, FaceChart)> = pass
-                .uncovered
-                .iter()
-                .enumerate()
-                .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
-                .map(|(f, _)| (f as u32, charts[f]))
-                .collect();
-            plan.push_adaptive(&base, &roots, &cap_face);
+            let roots: Vec<(u32, FaceChart)> = mem::collect(
+                pass.uncovered
+                    .iter()
+                    .enumerate()
+                    .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
+                    .map(|(f, _)| (f as u32, charts[f])),
+            )?;
+            plan.push_adaptive(&base, &roots, &cap_face)?;
         }
         Ok(plan)
     }
@@ -533,9 +537,14 @@ impl<'t> SurfacePlan<'t> {
 
     /// Covers `roots` (faces of the analysed level) by adaptive refinement
     /// and marks the edges of level-0 patches that finer patches meet.
-    fn push_adaptive(&mut self, base: &TaggedBase, roots: &[(u32, FaceChart)], cap_face: &[bool]) {
+    fn push_adaptive(
+        &mut self,
+        base: &TaggedBase,
+        roots: &[(u32, FaceChart)],
+        cap_face: &[bool],
+    ) -> Result<(), MeshError> {
         if roots.is_empty() {
-            return;
+            return Ok(());
         }
         let first = (self.vertices + self.phantoms.len()) as u32;
         let a = adaptive::cover(
@@ -551,6 +560,9 @@ impl<'t> SurfacePlan<'t> {
             },
             first,
         );
+        self.phantoms
+            .try_reserve(a.points.rows.len(), a.points.rows.entries())?;
+        mem::reserve(&mut self.regular, a.patches.len())?;
         for i in 0..a.points.rows.len() {
             self.phantoms.push_row(a.points.rows.row(i));
         }
@@ -593,6 +605,7 @@ impl<'t> SurfacePlan<'t> {
             .filter_map(|cap| a.points.vertex_origin(cap.center))
             .collect();
         self.fallbacks.retain(|(v, _)| !capped.contains(v));
+        mem::reserve(&mut self.ev, a.caps.len())?;
         for cap in &a.caps {
             let sectors: Vec<FaceChart> = cap.sectors.iter().flatten().copied().collect();
             let n = sectors.len();
@@ -624,6 +637,7 @@ impl<'t> SurfacePlan<'t> {
         }
         self.uncovered.sort_by_key(|u| u.face);
         self.uncovered.dedup_by_key(|u| u.face);
+        Ok(())
     }
 
     /// Working-point index of a grid entry: the vertex itself, or a new
@@ -720,7 +734,11 @@ fn uncovered_list(
 }
 
 /// Classifies every face of one level.
-fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> Pass {
+fn analyse(
+    t: &Topology,
+    options: &PlanOptions<'_>,
+    clean: Option<&[bool]>,
+) -> Result<Pass, MeshError> {
     let nf = t.num_faces();
     // A cap needs its faces and the faces around their vertices clean; a
     // regular face itself.
@@ -732,17 +750,18 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
                 .all(|&v| t.outgoing(v as usize).all(|h| is_clean(t.face_of(h))))
         })
     };
-    let mut owner: Vec<Option<Reason>> = vec![None; nf];
-    let mut covered = vec![false; nf];
+    let mut owner: Vec<Option<Reason>> = mem::filled(nf, None)?;
+    let mut covered = mem::filled(nf, false)?;
     let mut pass = Pass {
-        regular: Vec::new(),
+        // At most one regular patch per face.
+        regular: mem::with_capacity(nf)?,
         polar: Vec::new(),
         ev: Vec::new(),
         uncovered: Vec::new(),
         fallbacks: Vec::new(),
     };
     // Per vertex: the reason its cap failed (for the faces around it).
-    let mut vertex_reason: Vec<Option<Reason>> = vec![None; t.num_vertices()];
+    let mut vertex_reason: Vec<Option<Reason>> = mem::filled(t.num_vertices(), None)?;
     let claim = |faces: &[u32], covered: &mut Vec<bool>| -> bool {
         if faces.iter().any(|&f| covered[f as usize]) {
             return false;
@@ -844,7 +863,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
         .enumerate()
         .filter_map(|(v, r)| r.map(|r| (v as u32, r)))
         .collect();
-    pass
+    Ok(pass)
 }
 
 /// OpenSubdiv's refusals, in this order: no faces or vertices, more than

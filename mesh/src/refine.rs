@@ -30,6 +30,7 @@
 //!   a vertex no face uses: `v`.
 
 use crate::chart::FaceChart;
+use crate::mem::{self, OutOfMemory};
 use crate::stencil::StencilTable;
 use crate::topology::{Topology, NONE};
 use alloc::vec;
@@ -107,14 +108,31 @@ fn c(t: f64) -> f64 {
 /// If `charts` does not have one entry per face, or a seed does not describe
 /// its faces as documented on [`PolarSeed`] (a caller's logic error).
 pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Refined {
+    match try_refine(topo, charts, poles) {
+        Ok(r) => r,
+        Err(e) => panic!("refine: {e}"),
+    }
+}
+
+/// [`refine`], with [`OutOfMemory`] when a buffer whose size depends on the
+/// mesh (edges, stencil rows, faces) cannot be allocated.
+///
+/// # Panics
+/// As [`refine`], on a caller's logic error.
+pub fn try_refine(
+    topo: &Topology,
+    charts: &[FaceChart],
+    poles: &[PolarSeed],
+) -> Result<Refined, OutOfMemory> {
     let nv = topo.num_vertices();
     let nf = topo.num_faces();
     let nh = topo.num_half_edges();
     assert_eq!(charts.len(), nf, "refine: one chart per face");
 
     // Undirected edges, in the order first met along the half-edges.
-    let mut edge = vec![NONE; nh];
-    let mut edge_he: Vec<u32> = Vec::new();
+    let mut edge = mem::filled(nh, NONE)?;
+    // At most one edge per half-edge.
+    let mut edge_he: Vec<u32> = mem::with_capacity(nh)?;
     for h in 0..nh {
         if edge[h] == NONE {
             let e = edge_he.len() as u32;
@@ -132,15 +150,13 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
     let total = nv + nf + ne;
 
     // Face points.
-    let face_rows: Vec<Row> = (0..nf)
-        .map(|f| {
-            let vs = topo.face(f);
-            let w = 1.0 / vs.len() as f64;
-            vs.iter().map(|&v| (v, w)).collect()
-        })
-        .collect();
+    let face_rows: Vec<Row> = mem::collect((0..nf).map(|f| {
+        let vs = topo.face(f);
+        let w = 1.0 / vs.len() as f64;
+        vs.iter().map(|&v| (v, w)).collect()
+    }))?;
 
-    let mut rows: Vec<Row> = Vec::with_capacity(total);
+    let mut rows: Vec<Row> = mem::with_capacity(total)?;
     // Vertex points.
     for v in 0..nv {
         let mut row = Row::new();
@@ -186,8 +202,8 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
     }
 
     // C²PS at the seeds. Per face: the corner holding a seed's pole (or NONE).
-    let mut pole_corner = vec![NONE; nf];
-    let mut new_poles = Vec::with_capacity(poles.len());
+    let mut pole_corner = mem::filled(nf, NONE)?;
+    let mut new_poles = mem::with_capacity(poles.len())?;
     for seed in poles {
         let n = seed.link1.len();
         assert!(
@@ -279,14 +295,16 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
     }
 
     let mut stencils = StencilTable::new();
+    stencils.try_reserve(rows.len(), rows.iter().map(|r| r.len()).sum())?;
     for row in rows {
         stencils.push_row(row);
     }
 
     // Faces, charts, parents.
-    let mut faces = Vec::with_capacity(nh + poles.len() * 3);
-    let mut out_charts = Vec::with_capacity(faces.capacity());
-    let mut parent = Vec::with_capacity(faces.capacity());
+    let out_faces = nh + poles.len() * 3;
+    let mut faces = mem::with_capacity(out_faces)?;
+    let mut out_charts = mem::with_capacity(out_faces)?;
+    let mut parent = mem::with_capacity(out_faces)?;
     for f in 0..nf {
         let k = topo.face_len(f);
         let fp = fp_base + f as u32;
@@ -311,14 +329,14 @@ pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Ref
         }
     }
 
-    Refined {
+    Ok(Refined {
         num_vertices: total,
         faces,
         stencils,
         charts: out_charts,
         parent,
         poles: new_poles,
-    }
+    })
 }
 
 #[cfg(test)]

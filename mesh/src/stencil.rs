@@ -39,6 +39,19 @@ impl StencilTable {
         (self.offsets.len() - 2) as u32
     }
 
+    /// Room for `rows` more rows of `entries` entries in all, reserved
+    /// fallibly so that the pushes that follow do not allocate.
+    pub fn try_reserve(
+        &mut self,
+        rows: usize,
+        entries: usize,
+    ) -> Result<(), crate::mem::OutOfMemory> {
+        let first = usize::from(self.offsets.is_empty());
+        crate::mem::reserve(&mut self.offsets, rows + first)?;
+        crate::mem::reserve(&mut self.indices, entries)?;
+        crate::mem::reserve(&mut self.weights, entries)
+    }
+
     /// Number of rows.
     pub fn len(&self) -> usize {
         self.offsets.len().saturating_sub(1)
@@ -76,7 +89,15 @@ impl StencilTable {
     /// [`Self::len`] entries and `src` at least [`Self::source_len`]; the
     /// analysis guarantees both (rows past `out`'s end are skipped).
     pub fn apply<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
-        for (i, o) in out.iter_mut().enumerate().take(self.len()) {
+        self.apply_from(src, out, 0);
+    }
+
+    /// [`Self::apply`] for rows `first..first + out.len()`, writing row
+    /// `first + k` to `out[k]`: a part of the output, for one thread.
+    pub fn apply_from<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>], first: usize) {
+        let rows = self.len().saturating_sub(first);
+        for (k, o) in out.iter_mut().enumerate().take(rows) {
+            let i = first + k;
             let mut acc = Point3::ZERO;
             for (idx, w) in self.row(i) {
                 if let Some(p) = src.get(idx as usize) {

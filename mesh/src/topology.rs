@@ -17,7 +17,7 @@
 
 use crate::error::MeshError;
 use crate::input::MeshInput;
-use alloc::vec;
+use crate::mem;
 use alloc::vec::Vec;
 
 /// "No half-edge" (a boundary edge has no twin).
@@ -88,9 +88,9 @@ impl Topology {
         if nv > limit || nf > limit || corners > limit {
             return Err(MeshError::TooLarge);
         }
-        let mut face_start = Vec::with_capacity(nf + 1);
-        let mut corner_vertex = Vec::with_capacity(corners);
-        let mut corner_face = Vec::with_capacity(corners);
+        let mut face_start = mem::with_capacity(nf + 1)?;
+        let mut corner_vertex = mem::with_capacity(corners)?;
+        let mut corner_face = mem::with_capacity(corners)?;
         face_start.push(0u32);
         for (f, face) in faces.iter().enumerate() {
             if face.len() < 3 {
@@ -124,10 +124,10 @@ impl Topology {
             face_start,
             corner_vertex,
             corner_face,
-            twin: vec![NONE; corners],
-            vertex_start: vec![NONE; nv],
-            vertex_faces: vec![0; nv],
-            vertex_boundary: vec![false; nv],
+            twin: mem::filled(corners, NONE)?,
+            vertex_start: mem::filled(nv, NONE)?,
+            vertex_faces: mem::filled(nv, 0)?,
+            vertex_boundary: mem::filled(nv, false)?,
         };
         topo.link_twins(nv)?;
         topo.link_vertices()?;
@@ -139,15 +139,15 @@ impl Topology {
     /// found by a short scan).
     fn link_twins(&mut self, nv: usize) -> Result<(), MeshError> {
         let nh = self.corner_vertex.len();
-        let mut start = vec![0u32; nv + 1];
+        let mut start = mem::filled(nv + 1, 0u32)?;
         for &v in &self.corner_vertex {
             start[v as usize + 1] += 1;
         }
         for v in 0..nv {
             start[v + 1] += start[v];
         }
-        let mut fill = start.clone();
-        let mut out = vec![0u32; nh];
+        let mut fill = mem::to_vec(&start)?;
+        let mut out = mem::filled(nh, 0u32)?;
         for h in 0..nh {
             let v = self.corner_vertex[h] as usize;
             out[fill[v] as usize] = h as u32;
@@ -217,7 +217,7 @@ impl Topology {
     fn link_vertices(&mut self) -> Result<(), MeshError> {
         let nh = self.corner_vertex.len();
         let nv = self.vertex_start.len();
-        let mut boundary_out = vec![0u32; nv];
+        let mut boundary_out = mem::filled(nv, 0u32)?;
         for h in 0..nh {
             let v = self.corner_vertex[h] as usize;
             self.vertex_faces[v] += 1;

@@ -173,13 +173,25 @@ fn produce<R: Scalar>(
         precision,
         cc,
         args.max_patches,
+        args.threads.map(|t| t as usize),
     )?;
     // The f64 surface that f32 output is joined and welded by.
     let f64_guide = || -> Result<Option<Surface<f64>>, CliError> {
         if precision != "f32" {
             return Ok(None);
         }
-        build_scheme::<f64>(name, mesh, args.depth, tables, "f64", cc, args.max_patches).map(Some)
+        let threads = args.threads.map(|t| t as usize);
+        build_scheme::<f64>(
+            name,
+            mesh,
+            args.depth,
+            tables,
+            "f64",
+            cc,
+            args.max_patches,
+            threads,
+        )
+        .map(Some)
     };
     let grid = args.grid as usize;
     let format = args.format();
@@ -364,12 +376,15 @@ pub fn build<R: Scalar>(
         precision,
         false,
         DEFAULT_MAX_PATCHES,
+        None,
     )
 }
 
 /// [`build`], with Catmull-Clark caps everywhere when `catmull_clark`
 /// (`--scheme catmull-clark`), refusing a surface of more than
-/// `max_patches` patches before making any.
+/// `max_patches` patches before making any, evaluated by `threads` threads
+/// (`None`: [`crate::threads::default_threads`]).
+#[allow(clippy::too_many_arguments)]
 pub fn build_scheme<R: Scalar>(
     name: &str,
     mesh: &MeshInput,
@@ -378,6 +393,7 @@ pub fn build_scheme<R: Scalar>(
     precision: &str,
     catmull_clark: bool,
     max_patches: u64,
+    threads: Option<usize>,
 ) -> Result<Surface<R>, CliError> {
     let mesh_err = |error| CliError::mesh(name, error);
     let eval_err = |error| CliError::eval(name, error);
@@ -402,8 +418,15 @@ pub fn build_scheme<R: Scalar>(
         patches: Vec::new(),
         caps: Vec::new(),
     };
-    evaluator
-        .evaluate(&plan, &positions, &mut sink)
+    // The surface's patches are held until the output is written: reserved
+    // at once, so that a surface too large for memory is an error.
+    let patches = usize::try_from(plan.patch_count()).unwrap_or(usize::MAX);
+    capdiv_mesh::mem::reserve_exact(&mut sink.patches, patches)
+        .and_then(|()| {
+            capdiv_mesh::mem::reserve_exact(&mut sink.caps, plan.polar.len() + plan.ev.len())
+        })
+        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
+    crate::threads::evaluate(threads, &mut evaluator, &plan, &positions, &mut sink)
         .map_err(eval_err)?;
     let evaluation = start.elapsed();
 

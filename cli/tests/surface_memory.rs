@@ -1,0 +1,64 @@
+//! `capdiv surface` under a memory limit: an allocation the system refuses is
+//! reported as one line `error: … out of memory …` with exit status 2, not
+//! an abort with a backtrace.
+
+mod common;
+
+use common::{s, tempdir};
+use std::fmt::Write as _;
+use std::process::Command;
+
+/// A torus of `n × n` quads, each split into two triangles, as OBJ text.
+fn triangle_torus(n: usize) -> String {
+    let mut text = String::new();
+    for i in 0..n {
+        for j in 0..n {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let b = std::f64::consts::TAU * j as f64 / n as f64;
+            let r = 3.0 + b.cos();
+            let _ = writeln!(text, "v {} {} {}", r * a.cos(), r * a.sin(), b.sin());
+        }
+    }
+    let id = |i: usize, j: usize| (i % n) * n + (j % n) + 1;
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            let _ = writeln!(text, "f {a} {b} {c}");
+            let _ = writeln!(text, "f {a} {c} {d}");
+        }
+    }
+    text
+}
+
+#[test]
+fn surface_out_of_memory_is_one_line_and_exit_2() {
+    let dir = tempdir();
+    let input = dir.path().join("torus.obj");
+    // 7,200 triangles: about 90 MB of analysis; at depth 12 the 1.6 million
+    // patches the JSON output holds need about 750 MB more. The limit
+    // leaves room for the 512 MiB worker stack and the analysis, not for
+    // the patches.
+    std::fs::write(&input, triangle_torus(60)).unwrap();
+    let output = dir.path().join("out.json");
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v 900000 && exec '{bin}' surface '{}' --depth 12 --max-patches 100000000 \
+         --format json -o '{}'",
+        s(&input),
+        s(&output)
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("run sh");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(out.stdout.is_empty());
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "stderr: {stderr}");
+    assert!(lines[0].starts_with("error: "), "{stderr}");
+    assert!(lines[0].contains("out of memory"), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
+    assert!(!output.exists());
+}

@@ -1,0 +1,282 @@
+//! Parallel evaluation on hosts (feature `parallel`):
+//! [`Evaluator::evaluate_parallel`] runs the same code as
+//! [`Evaluator::evaluate`] over rayon's threads and gives the sink the same
+//! records, bit for bit, in the same order.
+//!
+//! The refinement steps are applied in blocks of rows, one block per task
+//! (each row is computed as on one thread). The patches and caps are cut
+//! into pieces (runs of regular faces, runs of caps) of similar work; the
+//! pieces of a window are evaluated by one task per thread, each with its
+//! own cap buffers, taking the next piece as it finishes one; the calling
+//! thread meanwhile hands the previous window's records to the sink in
+//! order, so the sink needs neither `Send` nor locking.
+
+extern crate std;
+
+use crate::evaluate::{emit_regular, polar_need, EvalError, Scratch};
+use crate::mem::{self, OutOfMemory};
+use crate::plan::SurfacePlan;
+use crate::{CapRecord, Evaluator, PatchRecord, StencilTable, SurfaceSink};
+use alloc::vec::Vec;
+use capdiv::eg::FourierRule;
+use capdiv::{Point3, Real};
+use core::ops::Range;
+use core::sync::atomic::{AtomicUsize, Ordering};
+use rayon::prelude::*;
+
+/// Patches per piece (about): enough to outweigh taking a piece, few
+/// enough to balance the threads.
+const PIECE_PATCHES: u64 = 2048;
+
+/// Pieces per thread in a window: the records of a window are held until
+/// the sink has them.
+const PIECES_PER_THREAD: usize = 4;
+
+/// Rows of a refinement step per task.
+const STENCIL_BLOCK: usize = 4096;
+
+/// A part of the surface, in the order [`Evaluator::evaluate`] emits it.
+#[derive(Clone, Debug)]
+enum Piece {
+    /// Regular faces (indices into `plan.regular`).
+    Regular(Range<usize>),
+    /// Caps (polar caps first, then EG and Catmull-Clark caps, as indexed in
+    /// [`PatchRecord::cap`]).
+    Caps(Range<usize>),
+}
+
+/// What a piece gave: its records, and the error that stopped it.
+enum Event<R> {
+    Patch(PatchRecord<R>),
+    Cap(CapRecord<R>),
+}
+
+struct Done<R> {
+    events: Vec<Event<R>>,
+    error: Option<EvalError>,
+}
+
+/// A sink that keeps the records it receives (fallibly: the first
+/// allocation that fails is kept as the piece's error).
+struct Buffer<R> {
+    events: Vec<Event<R>>,
+    failed: Option<OutOfMemory>,
+}
+
+impl<R: Clone> Buffer<R> {
+    fn keep(&mut self, e: Event<R>) {
+        if self.failed.is_none() {
+            if let Err(oom) = mem::push(&mut self.events, e) {
+                self.failed = Some(oom);
+            }
+        }
+    }
+}
+
+impl<R: Clone> SurfaceSink<R> for Buffer<R> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.keep(Event::Patch(p.clone()));
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.keep(Event::Cap(c.clone()));
+    }
+}
+
+/// The pieces of `plan`, in emission order.
+fn pieces(plan: &SurfacePlan<'_>) -> Result<Vec<Piece>, OutOfMemory> {
+    let mut out = Vec::new();
+    let regular = plan.regular.len();
+    let step = PIECE_PATCHES as usize;
+    for a in (0..regular).step_by(step) {
+        mem::push(&mut out, Piece::Regular(a..(a + step).min(regular)))?;
+    }
+    let depth = u64::from(plan.options.depth);
+    let levels = 1u64
+        .checked_shl(plan.options.depth)
+        .map_or(u64::MAX, |p| p - 1);
+    // Patches of each cap, as counted by `SurfacePlan::patch_count`.
+    let polar = plan
+        .polar
+        .iter()
+        .map(|p| 4u64.saturating_mul(p.valence as u64).saturating_mul(levels));
+    let ev = plan.ev.iter().map(|e| {
+        3u64.saturating_mul(e.sectors.len() as u64)
+            .saturating_mul(depth)
+    });
+    let (mut start, mut weight) = (0, 0u64);
+    for (i, w) in polar.chain(ev).enumerate() {
+        weight = weight.saturating_add(w.max(1));
+        if weight >= PIECE_PATCHES {
+            mem::push(&mut out, Piece::Caps(start..i + 1))?;
+            (start, weight) = (i + 1, 0);
+        }
+    }
+    let caps = plan.polar.len() + plan.ev.len();
+    if start < caps {
+        mem::push(&mut out, Piece::Caps(start..caps))?;
+    }
+    Ok(out)
+}
+
+/// Evaluates `piece` into a buffer, with `scratch` for its caps.
+fn run_piece<R: Real>(
+    piece: &Piece,
+    scratch: &mut Scratch<R>,
+    work: &[Point3<R>],
+    rules: &[FourierRule<'static, R>],
+    plan: &SurfacePlan<'_>,
+) -> Done<R> {
+    let mut buf = Buffer {
+        events: Vec::new(),
+        failed: None,
+    };
+    let mut error = None;
+    match piece {
+        Piece::Regular(range) => {
+            if let Err(oom) = mem::reserve_exact(&mut buf.events, range.len()) {
+                buf.failed = Some(oom);
+            } else {
+                emit_regular(plan, work, range.clone(), &mut buf);
+            }
+        }
+        Piece::Caps(range) => {
+            let polar = plan.polar.len();
+            for index in range.clone() {
+                let result = match plan.polar.get(index) {
+                    Some(p) => scratch.polar_cap(work, plan, p, index as u32, &mut buf),
+                    None => scratch.ev_cap(
+                        work,
+                        rules,
+                        plan,
+                        &plan.ev[index - polar],
+                        index as u32,
+                        &mut buf,
+                    ),
+                };
+                if let Err(e) = result {
+                    error = Some(e);
+                    break;
+                }
+                if buf.failed.is_some() {
+                    break;
+                }
+            }
+        }
+    }
+    Done {
+        events: buf.events,
+        error: buf.failed.map(EvalError::from).or(error),
+    }
+}
+
+/// Evaluates the pieces `window` over the scratches (one task each, every
+/// task taking the next piece not yet taken), into `slots` by piece.
+fn run_window<R: Real + Send + Sync>(
+    window: &[Piece],
+    scratches: &mut [&mut Scratch<R>],
+    work: &[Point3<R>],
+    rules: &[FourierRule<'static, R>],
+    plan: &SurfacePlan<'_>,
+) -> Vec<Option<Done<R>>> {
+    let next = AtomicUsize::new(0);
+    let done: Vec<Vec<(usize, Done<R>)>> = scratches
+        .par_iter_mut()
+        .map(|scratch| {
+            let mut mine = Vec::new();
+            loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(piece) = window.get(i) else {
+                    break;
+                };
+                mine.push((i, run_piece(piece, scratch, work, rules, plan)));
+            }
+            mine
+        })
+        .collect();
+    let mut slots: Vec<Option<Done<R>>> = (0..window.len()).map(|_| None).collect();
+    for (i, d) in done.into_iter().flatten() {
+        slots[i] = Some(d);
+    }
+    slots
+}
+
+/// Hands the records of `slots` to `sink` in order; the first piece's
+/// error ends it, as it ends the one-thread evaluation.
+fn emit<R>(slots: Vec<Option<Done<R>>>, sink: &mut dyn SurfaceSink<R>) -> Result<(), EvalError> {
+    for d in slots.into_iter().flatten() {
+        for e in &d.events {
+            match e {
+                Event::Patch(p) => sink.patch(p),
+                Event::Cap(c) => sink.cap(c),
+            }
+        }
+        if let Some(e) = d.error {
+            return Err(e);
+        }
+    }
+    Ok(())
+}
+
+/// [`StencilTable::apply`] in blocks of rows over rayon's threads.
+fn apply_parallel<R: Real + Send + Sync>(
+    table: &StencilTable,
+    src: &[Point3<R>],
+    out: &mut [Point3<R>],
+) {
+    out.par_chunks_mut(STENCIL_BLOCK)
+        .enumerate()
+        .for_each(|(b, block)| table.apply_from(src, block, b * STENCIL_BLOCK));
+}
+
+impl<R: Real + Send + Sync> Evaluator<R> {
+    /// [`Self::evaluate`] over the threads of the current rayon pool (the
+    /// global one, or the one a caller entered with `ThreadPool::install`):
+    /// the sink receives the same records, bit for bit, in the same order,
+    /// on the calling thread. With one thread it is [`Self::evaluate`].
+    ///
+    /// The first call sizes one set of cap buffers per extra thread
+    /// ([`EvalError::OutOfMemory`] if they cannot be allocated); the records
+    /// of a few pieces per thread are held until the sink has them.
+    pub fn evaluate_parallel(
+        &mut self,
+        plan: &SurfacePlan<'_>,
+        positions: &[[R; 3]],
+        sink: &mut dyn SurfaceSink<R>,
+    ) -> Result<(), EvalError> {
+        let threads = rayon::current_num_threads().max(1);
+        if threads == 1 {
+            return self.evaluate(plan, positions, sink);
+        }
+        self.prepare(plan, positions, apply_parallel)?;
+        if self.extra.len() + 1 < threads {
+            let need = polar_need::<R>(plan)?;
+            let more = threads - 1 - self.extra.len();
+            mem::reserve_exact(&mut self.extra, more)?;
+            while self.extra.len() + 1 < threads {
+                self.extra.push(Scratch::new(plan, need)?);
+            }
+        }
+        let pieces = pieces(plan)?;
+        let (work, rules) = (&self.work, &self.eg_rules);
+        let mut scratches: Vec<&mut Scratch<R>> = mem::with_capacity(threads)?;
+        scratches.push(&mut self.scratch);
+        scratches.extend(self.extra.iter_mut().take(threads - 1));
+        let mut windows = pieces.chunks(PIECES_PER_THREAD * threads);
+        let Some(first) = windows.next() else {
+            return Ok(());
+        };
+        let mut ready = run_window(first, &mut scratches, work, rules, plan);
+        for window in windows {
+            // The next window is evaluated while this thread emits the last.
+            let mut next = Vec::new();
+            let emitted = rayon::in_place_scope(|scope| {
+                let (scratches, next) = (&mut scratches, &mut next);
+                scope.spawn(move |_| *next = run_window(window, scratches, work, rules, plan));
+                emit(core::mem::take(&mut ready), sink)
+            });
+            emitted?;
+            ready = next;
+        }
+        emit(ready, sink)
+    }
+}
