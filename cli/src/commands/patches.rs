@@ -474,7 +474,7 @@ impl PatchWriter {
 /// aside and renamed over the target at the end (as `Sink::File` does in one
 /// piece); or a FIFO, device or dangling link written through
 /// ([`Target::of`]).
-enum StreamOut {
+pub(crate) enum StreamOut {
     Stdout(std::io::BufWriter<std::io::StdoutLock<'static>>),
     File {
         w: std::io::BufWriter<std::fs::File>,
@@ -487,7 +487,7 @@ enum StreamOut {
 }
 
 impl StreamOut {
-    fn open(path: Option<&std::path::Path>) -> Result<Self, CliError> {
+    pub(crate) fn open(path: Option<&std::path::Path>) -> Result<Self, CliError> {
         let Some(path) = path else {
             return Ok(StreamOut::Stdout(std::io::BufWriter::new(
                 std::io::stdout().lock(),
@@ -515,7 +515,7 @@ impl StreamOut {
         }
     }
 
-    fn commit(&mut self) -> std::io::Result<()> {
+    pub(crate) fn commit(&mut self) -> std::io::Result<()> {
         match self {
             StreamOut::Stdout(w) => w.flush(),
             StreamOut::Through(w) => w.flush(),

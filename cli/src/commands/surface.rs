@@ -25,6 +25,10 @@
 //!   counts, the shell, and for a closed shell the volume it encloses (Gauss
 //!   quadrature over the faces).
 //!
+//! `obj` (f64, a consistently oriented manifold input) and compact `json`
+//! are written as they are produced ([`super::surface_stream`]); the other
+//! outputs are built whole in memory first.
+//!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
 
@@ -77,6 +81,22 @@ pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
         mesh.tags.boundary = b.into();
     }
     let name = source.name.as_str();
+    let to_terminal =
+        args.output.is_none() && args.format.is_none() && std::io::stdout().is_terminal();
+    if !to_terminal && super::surface_stream::streams(args, &mesh) {
+        let streamed = match (args.format(), args.precision) {
+            (SurfaceFormat::Obj, _) => {
+                super::surface_stream::obj(name, &naming, &mesh, &tables, args)
+            }
+            (_, Precision::F64) => {
+                super::surface_stream::json::<f64>(name, &naming, &mesh, &tables, args, "f64")
+            }
+            (_, Precision::F32) => {
+                super::surface_stream::json::<f32>(name, &naming, &mesh, &tables, args, "f32")
+            }
+        };
+        return streamed.map_err(|e| e.named(&naming));
+    }
     let input = (&mesh, objects.as_slice());
     let (bytes, report) = match args.precision {
         Precision::F64 => produce::<f64>(name, &naming, input, &tables, args, "f64", WELD_F64),
@@ -85,7 +105,7 @@ pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
     .map_err(|e| e.named(&naming))?;
     // A terminal gets the summary, not megabytes of patches, unless a
     // format was asked for.
-    if args.output.is_none() && args.format.is_none() && std::io::stdout().is_terminal() {
+    if to_terminal {
         let mut out = Outcome::new(Vec::new(), Sink::Stdout);
         out.report = if args.quiet { String::new() } else { report };
         out.report.push_str(TERMINAL_HINT);
@@ -379,75 +399,149 @@ pub fn build_scheme<R: Scalar>(
     catmull_clark: bool,
     max_patches: u64,
 ) -> Result<Surface<R>, CliError> {
-    let mesh_err = |error| CliError::mesh(name, error);
-    let eval_err = |error| CliError::eval(name, error);
-    let start = Instant::now();
-    let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
-    let plan = SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            eg_tables,
-            catmull_clark,
-        },
-    )
-    .map_err(mesh_err)?;
-    check_size(name, &plan, max_patches)?;
-    let analysis = start.elapsed();
-
-    let start = Instant::now();
-    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
-    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
     let mut sink = Collect {
         patches: Vec::new(),
         caps: Vec::new(),
     };
-    evaluator
-        .evaluate(&plan, &positions, &mut sink)
-        .map_err(eval_err)?;
-    let evaluation = start.elapsed();
+    let options = SchemeOptions {
+        depth,
+        tables,
+        precision,
+        catmull_clark,
+        max_patches,
+    };
+    let summary = run_scheme::<R>(name, mesh, &options, &mut sink)?;
+    Ok(Surface {
+        patches: sink.patches,
+        caps: sink.caps,
+        summary,
+    })
+}
 
-    let finite = sink
-        .patches
-        .iter()
-        .all(|p| geometry_points(p).all(|q| q.is_finite()))
-        && sink.caps.iter().all(|c| c.limit.is_finite());
-    if !finite {
-        return Err(CliError::NonFiniteResult {
-            source: name.to_string(),
-        });
-    }
-    if sink.patches.is_empty() {
-        return Err(CliError::EmptySurface {
-            source: name.to_string(),
-        });
-    }
+/// How `surface` plans and evaluates.
+#[derive(Clone, Copy, Debug)]
+pub struct SchemeOptions<'a> {
+    /// Rings every cap emits at most.
+    pub depth: u32,
+    /// `--eg-table` rules.
+    pub tables: &'a [Table],
+    /// `f64` or `f32` (for the summary).
+    pub precision: &'a str,
+    /// Catmull-Clark caps everywhere.
+    pub catmull_clark: bool,
+    /// Refuse a plan of more patches.
+    pub max_patches: u64,
+}
 
-    let mut patches = PatchCounts::default();
-    for p in &sink.patches {
-        match p.kind {
-            PatchKind::Regular => patches.regular += 1,
-            PatchKind::Polar => patches.polar += 1,
-            PatchKind::Eg => patches.eg += 1,
-            PatchKind::CatmullClark => patches.catmull_clark += 1,
+/// Counts of the patches and caps passing to another sink.
+pub struct Tally<'a, R> {
+    inner: &'a mut dyn SurfaceSink<R>,
+    patches: PatchCounts,
+    levels: Vec<usize>,
+    caps: Vec<CapCount>,
+    finite: bool,
+}
+
+impl<'a, R: Scalar> Tally<'a, R> {
+    /// Counts what goes to `inner`.
+    pub fn new(inner: &'a mut dyn SurfaceSink<R>) -> Self {
+        Tally {
+            inner,
+            patches: PatchCounts::default(),
+            levels: Vec::new(),
+            caps: Vec::new(),
+            finite: true,
         }
-        patches.total += 1;
     }
-    let mut caps: Vec<CapCount> = Vec::new();
-    for c in &sink.caps {
+}
+
+impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.finite &= geometry_points(p).all(|q| q.is_finite());
+        match p.kind {
+            PatchKind::Regular => self.patches.regular += 1,
+            PatchKind::Polar => self.patches.polar += 1,
+            PatchKind::Eg => self.patches.eg += 1,
+            PatchKind::CatmullClark => self.patches.catmull_clark += 1,
+        }
+        self.patches.total += 1;
+        let level = p.level as usize;
+        if self.levels.len() <= level {
+            self.levels.resize(level + 1, 0);
+        }
+        self.levels[level] += 1;
+        self.inner.patch(p);
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.finite &= c.limit.is_finite();
         let (scheme, valence) = (c.scheme.id(), c.valence);
-        match caps
+        match self
+            .caps
             .iter_mut()
             .find(|k| k.scheme == scheme && k.valence == valence)
         {
             Some(k) => k.count += 1,
-            None => caps.push(CapCount {
+            None => self.caps.push(CapCount {
                 scheme,
                 valence,
                 count: 1,
             }),
         }
+        self.inner.cap(c);
     }
+}
+
+/// Validates, analyses and evaluates `mesh` in `R` into `sink`, refusing a
+/// surface of more than `options.max_patches` patches before making any;
+/// returns the summary. A surface that is not finite or has no patch is an
+/// error after the evaluation (a streaming sink has then written part of it).
+pub fn run_scheme<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    options: &SchemeOptions<'_>,
+    sink: &mut dyn SurfaceSink<R>,
+) -> Result<Summary, CliError> {
+    let mesh_err = |error| CliError::mesh(name, error);
+    let eval_err = |error| CliError::eval(name, error);
+    let start = Instant::now();
+    let eg_tables = options
+        .tables
+        .iter()
+        .map(Table::rule)
+        .collect::<Result<_, _>>()?;
+    let catmull_clark = options.catmull_clark;
+    let plan = SurfacePlan::for_mesh(
+        mesh,
+        PlanOptions {
+            depth: options.depth,
+            eg_tables,
+            catmull_clark,
+        },
+    )
+    .map_err(mesh_err)?;
+    check_size(name, &plan, options.max_patches)?;
+    let analysis = start.elapsed();
+
+    let start = Instant::now();
+    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
+    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
+    let mut tally = Tally::new(sink);
+    evaluator
+        .evaluate(&plan, &positions, &mut tally)
+        .map_err(eval_err)?;
+    let evaluation = start.elapsed();
+
+    if !tally.finite {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    if tally.patches.total == 0 {
+        return Err(CliError::EmptySurface {
+            source: name.to_string(),
+        });
+    }
+    let mut caps = tally.caps;
     caps.sort_by_key(|k| (k.scheme, k.valence));
     let reasons = |list: &[capdiv_mesh::plan::UncoveredFace]| {
         list.iter()
@@ -458,14 +552,18 @@ pub fn build_scheme<R: Scalar>(
             })
             .collect()
     };
-    let summary = Summary {
+    let mut levels = tally.levels;
+    if levels.is_empty() {
+        levels.push(0);
+    }
+    Ok(Summary {
         input: InputSummary {
             vertices: plan.input_vertices,
             faces: plan.input_faces,
             closed: mesh.tags.holes.is_empty() && Topology::new(mesh).is_ok_and(|t| t.is_closed()),
         },
-        depth,
-        precision: precision.to_string(),
+        depth: options.depth,
+        precision: options.precision.to_string(),
         scheme: if catmull_clark {
             SurfaceScheme::CatmullClark
         } else {
@@ -473,26 +571,12 @@ pub fn build_scheme<R: Scalar>(
         }
         .name(),
         tags: TagSummary::of(&mesh.tags),
-        patches,
+        patches: tally.patches,
         caps,
         refinement_steps: plan.steps.len(),
         needed_refinement: reasons(&plan.needed_refinement),
         uncovered: reasons(&plan.uncovered),
-        patches_per_level: {
-            let mut levels = vec![
-                0usize;
-                1 + sink
-                    .patches
-                    .iter()
-                    .map(|p| p.level as usize)
-                    .max()
-                    .unwrap_or(0)
-            ];
-            for p in &sink.patches {
-                levels[p.level as usize] += 1;
-            }
-            levels
-        },
+        patches_per_level: levels,
         last_holes: plan.last_holes.len(),
         fallbacks: plan
             .fallbacks
@@ -508,11 +592,6 @@ pub fn build_scheme<R: Scalar>(
             analysis: analysis.as_secs_f64() * 1e3,
             evaluation: evaluation.as_secs_f64() * 1e3,
         },
-    };
-    Ok(Surface {
-        patches: sink.patches,
-        caps: sink.caps,
-        summary,
     })
 }
 
