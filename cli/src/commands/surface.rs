@@ -33,7 +33,9 @@
 //! after the output has been written; exit status 0.
 
 use super::Outcome;
-use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, DEFAULT_MAX_PATCHES};
+use crate::args::{
+    Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, Tolerance, DEFAULT_MAX_PATCHES,
+};
 use crate::error::{CliError, Naming};
 use crate::export::{gltf, step};
 use crate::input::{parse, Input, Source};
@@ -184,22 +186,25 @@ fn produce<R: Scalar>(
     precision: &str,
     weld: f64,
 ) -> Result<(Vec<u8>, String), CliError> {
-    let cc = args.scheme == SurfaceScheme::CatmullClark;
-    let surface = build_scheme::<R>(
-        name,
-        mesh,
-        args.depth,
+    let options = SchemeOptions {
+        depth: args.depth,
         tables,
         precision,
-        cc,
-        args.max_patches,
-    )?;
+        catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
+        max_patches: args.max_patches,
+        tolerance: args.tolerance,
+    };
+    let surface = build_with::<R>(name, mesh, &options)?;
     // The f64 surface that f32 output is joined and welded by.
     let f64_guide = || -> Result<Option<Surface<f64>>, CliError> {
         if precision != "f32" {
             return Ok(None);
         }
-        build_scheme::<f64>(name, mesh, args.depth, tables, "f64", cc, args.max_patches).map(Some)
+        let options = SchemeOptions {
+            precision: "f64",
+            ..options
+        };
+        build_with::<f64>(name, mesh, &options).map(Some)
     };
     let grid = args.grid as usize;
     let format = args.format();
@@ -237,8 +242,9 @@ fn produce<R: Scalar>(
             let bytes = match format {
                 SurfaceFormat::Obj => {
                     let title = format!(
-                        "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
-                        args.depth
+                        "capdiv surface --depth {} --tolerance {} --grid {grid} --precision \
+                         {precision} {name}",
+                        args.depth, args.tolerance
                     );
                     obj_text(&tess, &surface.summary, &title).into_bytes()
                 }
@@ -303,8 +309,8 @@ pub fn step_text<R: Scalar>(
         product: name.to_string(),
         time_stamp: step::time_stamp(std::time::SystemTime::now()),
         description: format!(
-            "capdiv surface --depth {} --precision {} {name}",
-            args.depth, precision
+            "capdiv surface --depth {} --tolerance {} --precision {} {name}",
+            args.depth, args.tolerance, precision
         ),
     };
     let text = step::write(&b, &header);
@@ -399,18 +405,28 @@ pub fn build_scheme<R: Scalar>(
     catmull_clark: bool,
     max_patches: u64,
 ) -> Result<Surface<R>, CliError> {
-    let mut sink = Collect {
-        patches: Vec::new(),
-        caps: Vec::new(),
-    };
     let options = SchemeOptions {
         depth,
         tables,
         precision,
         catmull_clark,
         max_patches,
+        tolerance: Tolerance::None,
     };
-    let summary = run_scheme::<R>(name, mesh, &options, &mut sink)?;
+    build_with(name, mesh, &options)
+}
+
+/// [`build_scheme`] with all of `surface`'s options.
+pub fn build_with<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    options: &SchemeOptions<'_>,
+) -> Result<Surface<R>, CliError> {
+    let mut sink = Collect {
+        patches: Vec::new(),
+        caps: Vec::new(),
+    };
+    let summary = run_scheme::<R>(name, mesh, options, &mut sink)?;
     Ok(Surface {
         patches: sink.patches,
         caps: sink.caps,
@@ -431,6 +447,8 @@ pub struct SchemeOptions<'a> {
     pub catmull_clark: bool,
     /// Refuse a plan of more patches.
     pub max_patches: u64,
+    /// When caps stop emitting rings.
+    pub tolerance: Tolerance,
 }
 
 /// Counts of the patches and caps passing to another sink.
@@ -439,6 +457,7 @@ pub struct Tally<'a, R> {
     patches: PatchCounts,
     levels: Vec<usize>,
     caps: Vec<CapCount>,
+    rings: Option<[u32; 2]>,
     finite: bool,
 }
 
@@ -450,6 +469,7 @@ impl<'a, R: Scalar> Tally<'a, R> {
             patches: PatchCounts::default(),
             levels: Vec::new(),
             caps: Vec::new(),
+            rings: None,
             finite: true,
         }
     }
@@ -474,6 +494,10 @@ impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
     }
     fn cap(&mut self, c: &CapRecord<R>) {
         self.finite &= c.limit.is_finite();
+        self.rings = Some(match self.rings {
+            None => [c.rings; 2],
+            Some([lo, hi]) => [lo.min(c.rings), hi.max(c.rings)],
+        });
         let (scheme, valence) = (c.scheme.id(), c.valence);
         match self
             .caps
@@ -525,6 +549,8 @@ pub fn run_scheme<R: Scalar>(
     let start = Instant::now();
     let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
     let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
+    let tolerance = options.tolerance.absolute(diagonal(mesh));
+    evaluator.set_hole_tolerance(tolerance);
     let mut tally = Tally::new(sink);
     evaluator
         .evaluate(&plan, &positions, &mut tally)
@@ -563,6 +589,8 @@ pub fn run_scheme<R: Scalar>(
             closed: mesh.tags.holes.is_empty() && Topology::new(mesh).is_ok_and(|t| t.is_closed()),
         },
         depth: options.depth,
+        tolerance,
+        rings: tally.rings,
         precision: options.precision.to_string(),
         scheme: if catmull_clark {
             SurfaceScheme::CatmullClark
@@ -701,6 +729,10 @@ pub struct Summary {
     pub input: InputSummary,
     /// `--depth`.
     pub depth: u32,
+    /// The hole tolerance applied (absolute; `None`: every cap `depth` rings).
+    pub tolerance: Option<f64>,
+    /// Fewest and most rings a cap emitted (`None`: no cap).
+    pub rings: Option<[u32; 2]>,
     /// `f64` or `f32`.
     pub precision: String,
     /// `--scheme`: `default` or `catmull-clark`.
@@ -873,6 +905,25 @@ pub struct Times {
     pub analysis: f64,
     /// Evaluation of every patch and cap.
     pub evaluation: f64,
+}
+
+/// The length of the input's bounding-box diagonal (0 for an empty or
+/// non-finite box).
+pub fn diagonal(mesh: &MeshInput) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let d = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    if d.is_finite() {
+        d
+    } else {
+        0.0
+    }
 }
 
 /// The weld tolerance: `factor ×` the largest side of the input's bounding
@@ -1092,6 +1143,22 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>, naming: &Naming)
         s.precision
     );
     let _ = writeln!(t, "  tags         {}", s.tags.text(s.scheme));
+    if let Some([lo, hi]) = s.rings {
+        let range = if lo == hi {
+            format!("{lo}")
+        } else {
+            format!("{lo}-{hi}")
+        };
+        let _ = writeln!(
+            t,
+            "  rings        {range} per cap (--depth {}; {})",
+            s.depth,
+            match s.tolerance {
+                Some(tol) => format!("holes closed at width {}", sig(tol, 3)),
+                None => "no tolerance".to_string(),
+            }
+        );
+    }
     let p = &s.patches;
     let _ = writeln!(
         t,

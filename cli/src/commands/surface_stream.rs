@@ -71,6 +71,7 @@ fn options<'a>(args: &SurfaceArgs, tables: &'a [Table]) -> SchemeOptions<'a> {
         precision: "f64",
         catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
         max_patches: args.max_patches,
+        tolerance: args.tolerance,
     }
 }
 
@@ -108,8 +109,8 @@ pub fn obj(
     let (tolerance, size) = weld_tolerance(mesh, WELD_F64);
     let mut out = StreamOut::open(args.output.as_deref())?;
     let title = format!(
-        "capdiv surface --depth {} --grid {grid} --precision f64 {name}",
-        args.depth
+        "capdiv surface --depth {} --tolerance {} --grid {grid} --precision f64 {name}",
+        args.depth, args.tolerance
     );
     let weld = format!(
         "grid {grid}x{grid} per patch; welded within {} ({} x bounding-box size {})",
