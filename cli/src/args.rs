@@ -160,6 +160,13 @@ pub const DEFAULT_DEPTH: u32 = 4;
 /// million is several GB.
 pub const DEFAULT_MAX_PATCHES: u64 = 2_000_000;
 
+/// The default `--max-patches` of `surface` output written as it is made
+/// (OBJ in f64, compact JSON): memory does not grow with the patches, time
+/// does (about a microsecond a patch, several for OBJ), and files by about
+/// 1 KB a patch as JSON, 3 KB as OBJ at grid 4: 5e7 patches is an hour and
+/// 50–150 GB.
+pub const DEFAULT_MAX_STREAMED_PATCHES: u64 = 50_000_000;
+
 /// The default picture size of `render` and `compare` (per panel), and of
 /// `surface --format png`.
 pub const DEFAULT_SIZE: &str = "800x600";
@@ -655,10 +662,13 @@ pub struct SurfaceArgs {
     #[arg(long = "eg-table", value_name = "N=FILE")]
     pub eg_table: Vec<String>,
     /// Refuse, after the analysis and before making any patch, a surface
-    /// of more patches than this (the count is exact: see the summary's
-    /// `patches`).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PATCHES)]
-    pub max_patches: u64,
+    /// that would have more patches than this: every cap at `--depth` rings
+    /// (exact with `--tolerance none`, an upper bound otherwise) [default:
+    /// 50000000 for output written as it is made (obj in f64, compact
+    /// json), 2000000 for output built whole in memory (png, glb, gltf,
+    /// step, f32 obj, --pretty json)].
+    #[arg(long, value_name = "N")]
+    pub max_patches: Option<u64>,
     /// Do not print the summary on stderr.
     #[arg(long)]
     pub quiet: bool,

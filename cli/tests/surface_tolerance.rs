@@ -117,3 +117,53 @@ fn a_bad_tolerance_is_one_line() {
         assert!(run.stderr.contains("tolerance"), "{bad}: {}", run.stderr);
     }
 }
+
+/// With a tolerance, `--max-patches` refuses by the count with every cap at
+/// `--depth` (an upper bound: "up to"), the count `--tolerance none` makes.
+#[test]
+fn max_patches_counts_every_cap_at_the_depth() {
+    let dir = tempdir();
+    let path = dir.path().join("rc.obj");
+    std::fs::write(&path, obj_of(&samples::rounded_cube(6))).unwrap();
+    let total = |tol: &str| {
+        let run = capdiv(
+            &[
+                "surface",
+                "--depth",
+                "6",
+                "--tolerance",
+                tol,
+                "--format",
+                "json",
+                s(&path),
+            ],
+            None,
+        );
+        assert_eq!(run.code, Some(0), "{}", run.stderr);
+        run.json()["patches"].as_array().unwrap().len()
+    };
+    let (fixed, early) = (total("none"), total("3e-3rel"));
+    assert!(early < fixed);
+    let limit = (fixed - 1).to_string();
+    let run = capdiv(
+        &[
+            "surface",
+            "--depth",
+            "6",
+            "--max-patches",
+            &limit,
+            "--format",
+            "json",
+            s(&path),
+        ],
+        None,
+    );
+    assert_eq!(run.code, Some(2));
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains(&format!("would have up to {fixed} patches")),
+        "{}",
+        run.stderr
+    );
+}

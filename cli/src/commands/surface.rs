@@ -191,7 +191,7 @@ fn produce<R: Scalar>(
         tables,
         precision,
         catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
-        max_patches: args.max_patches,
+        max_patches: args.max_patches.unwrap_or(DEFAULT_MAX_PATCHES),
         tolerance: args.tolerance,
     };
     let surface = build_with::<R>(name, mesh, &options)?;
@@ -362,11 +362,24 @@ impl<R: Clone> SurfaceSink<R> for Collect<R> {
 
 /// Refuses a plan of more than `max` patches ([`CliError::TooLarge`]).
 pub fn check_size(name: &str, plan: &SurfacePlan<'_>, max: u64) -> Result<(), CliError> {
+    check_bound(name, plan, max, false)
+}
+
+/// [`check_size`]; `up_to`: caps may stop before the plan's depth, so its
+/// count (`SurfacePlan::patch_count`: regular patches plus, per cap, the
+/// patches of every ring to the depth) is an upper bound.
+pub fn check_bound(
+    name: &str,
+    plan: &SurfacePlan<'_>,
+    max: u64,
+    up_to: bool,
+) -> Result<(), CliError> {
     let patches = plan.patch_count();
     if patches > max {
         return Err(CliError::TooLarge {
             source: name.to_string(),
             patches,
+            up_to,
             max,
         });
     }
@@ -543,7 +556,8 @@ pub fn run_scheme<R: Scalar>(
         },
     )
     .map_err(mesh_err)?;
-    check_size(name, &plan, options.max_patches)?;
+    let up_to = options.tolerance != Tolerance::None;
+    check_bound(name, &plan, options.max_patches, up_to)?;
     let analysis = start.elapsed();
 
     let start = Instant::now();

@@ -70,7 +70,9 @@ fn options<'a>(args: &SurfaceArgs, tables: &'a [Table]) -> SchemeOptions<'a> {
         tables,
         precision: "f64",
         catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
-        max_patches: args.max_patches,
+        max_patches: args
+            .max_patches
+            .unwrap_or(crate::args::DEFAULT_MAX_STREAMED_PATCHES),
         tolerance: args.tolerance,
     }
 }
