@@ -160,6 +160,13 @@ pub const DEFAULT_DEPTH: u32 = 4;
 /// million is several GB.
 pub const DEFAULT_MAX_PATCHES: u64 = 2_000_000;
 
+/// The default `--max-patches` of `surface` output written as it is made
+/// (OBJ in f64, compact JSON): memory does not grow with the patches, time
+/// does (about a microsecond a patch, several for OBJ), and files by about
+/// 1 KB a patch as JSON, 3 KB as OBJ at grid 4: 5e7 patches is an hour and
+/// 50–150 GB.
+pub const DEFAULT_MAX_STREAMED_PATCHES: u64 = 50_000_000;
+
 /// The default picture size of `render` and `compare` (per panel), and of
 /// `surface --format png`.
 pub const DEFAULT_SIZE: &str = "800x600";
@@ -301,6 +308,71 @@ fn parse_zoom(s: &str) -> Result<f64, String> {
         return Err(bad());
     }
     Ok(z)
+}
+
+/// `surface --tolerance`: when a cap stops emitting rings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tolerance {
+    /// Every cap emits `--depth` rings.
+    None,
+    /// Rings until the hole is at most this wide (the input's units).
+    Absolute(f64),
+    /// Rings until the hole is at most this fraction of the input's
+    /// bounding-box diagonal.
+    Relative(f64),
+}
+
+impl Tolerance {
+    /// The absolute tolerance for a bounding-box diagonal `diagonal`.
+    pub fn absolute(self, diagonal: f64) -> Option<f64> {
+        match self {
+            Tolerance::None => None,
+            Tolerance::Absolute(t) => Some(t),
+            Tolerance::Relative(r) => Some(r * diagonal),
+        }
+    }
+}
+
+impl std::fmt::Display for Tolerance {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Tolerance::None => f.write_str("none"),
+            Tolerance::Absolute(t) => write!(f, "{t}"),
+            Tolerance::Relative(r) => write!(f, "{r}rel"),
+        }
+    }
+}
+
+/// The default `surface --tolerance`: a cap's hole closes at 0.3 % of the
+/// bounding-box diagonal (a fan over it deviates from the surface by about
+/// the hole's curvature times its width, far below a pixel of a picture of
+/// the whole mesh).
+pub const DEFAULT_TOLERANCE: &str = "3e-3rel";
+
+fn parse_tolerance(s: &str) -> Result<Tolerance, String> {
+    let bad = || {
+        format!(
+            "'{s}' is not a tolerance: 'none', a width T > 0 (e.g. 0.01) or a fraction of the \
+             bounding-box diagonal Trel (e.g. 3e-3rel)"
+        )
+    };
+    let s = s.trim();
+    if s == "none" {
+        return Ok(Tolerance::None);
+    }
+    let (number, relative) = match s.strip_suffix("rel") {
+        Some(n) => (n, true),
+        None => (s, false),
+    };
+    let t: f64 = number.trim().parse().map_err(|_| bad())?;
+    if !(t.is_finite() && t > 0.0) {
+        return Err(bad());
+    }
+    Ok(if relative {
+        Tolerance::Relative(t)
+    } else {
+        Tolerance::Absolute(t)
+    })
 }
 
 fn parse_lines(s: &str) -> Result<f64, String> {
@@ -545,10 +617,20 @@ pub struct PatchesArgs {
 /// `capdiv surface`.
 #[derive(Clone, Debug, Args)]
 pub struct SurfaceArgs {
-    /// Rings every cap emits (C²PS levels, EG and Catmull-Clark steps).
+    /// Most rings a cap emits (C²PS levels, EG and Catmull-Clark steps);
+    /// fewer when `--tolerance` is met first.
     #[arg(long, default_value_t = DEFAULT_DEPTH, value_name = "M",
           value_parser = clap::value_parser!(u32).range(0..=16))]
     pub depth: u32,
+    /// Each cap emits rings until the hole inside its last ring is at most
+    /// T across (closed by a fan to the limit point), and at most `--depth`:
+    /// `T` in the mesh's units, `Trel` a fraction of the bounding-box
+    /// diagonal, `none` always `--depth` rings. The summary gives the rings
+    /// used (fewest–most per cap). Rings of the adaptive refinement around
+    /// irregular points keep `--depth`.
+    #[arg(long, value_name = "T", default_value = DEFAULT_TOLERANCE,
+          value_parser = parse_tolerance)]
+    pub tolerance: Tolerance,
     /// Output format: `json` — `{"patches", "caps", "summary"}` (every
     /// Bézier patch with its kind, level, face and domain; every cap with its
     /// centre, scheme, valence, limit point and normal; the summary); `obj` —
@@ -580,10 +662,13 @@ pub struct SurfaceArgs {
     #[arg(long = "eg-table", value_name = "N=FILE")]
     pub eg_table: Vec<String>,
     /// Refuse, after the analysis and before making any patch, a surface
-    /// of more patches than this (the count is exact: see the summary's
-    /// `patches`).
-    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_PATCHES)]
-    pub max_patches: u64,
+    /// that would have more patches than this: every cap at `--depth` rings
+    /// (exact with `--tolerance none`, an upper bound otherwise) [default:
+    /// 50000000 for output written as it is made (obj in f64, compact
+    /// json), 2000000 for output built whole in memory (png, glb, gltf,
+    /// step, f32 obj, --pretty json)].
+    #[arg(long, value_name = "N")]
+    pub max_patches: Option<u64>,
     /// Threads that evaluate the surface [default: the available
     /// parallelism]; 1 evaluates on the calling thread. The output is the
     /// same, bit for bit, for every count.

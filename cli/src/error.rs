@@ -100,8 +100,10 @@ pub enum CliError {
     TooLarge {
         /// The input's name.
         source: String,
-        /// Patches the surface would have.
+        /// Patches the surface would have (with every cap at the depth).
         patches: u64,
+        /// `patches` is an upper bound (caps may stop earlier).
+        up_to: bool,
         /// The limit.
         max: u64,
     },
@@ -254,10 +256,12 @@ impl fmt::Display for CliError {
             CliError::TooLarge {
                 source,
                 patches,
+                up_to,
                 max,
             } => write!(
                 f,
-                "{source}: the surface would have {patches} patches, more than --max-patches {max} (lower --depth, or raise --max-patches)"
+                "{source}: the surface would have {}{patches} patches, more than --max-patches {max} (lower --depth, or raise --max-patches)",
+                if *up_to { "up to " } else { "" }
             ),
         }
     }

@@ -756,16 +756,26 @@ fn bad_meshes_fail_cleanly() {
     }
     expect_failure(d, "not-utf8", b"v 0 0 0\n\xff\xfe\n", &[], "not UTF-8");
     // A pole too deep for the largest net: by default refused for its size
-    // (2·4·32·(2^16 − 1) ≈ 1.7e7 C²PS patches); allowed that many, the
-    // evaluator's capacity error (valence 32·2^16 = 2^21 beyond the
-    // library's limit).
+    // (2·4·32·(2^16 − 1) ≈ 1.7e7 C²PS patches) when the output is built
+    // whole in memory (PNG); allowed that many, the evaluator's capacity
+    // error (valence 32·2^16 = 2^21 beyond the library's limit).
     let globe = obj_text(&samples::globe(32, 7), Corners::Plain);
     expect_failure(
         d,
         "too-large",
         globe.as_bytes(),
+        &["--depth", "16", "--format", "png"],
+        "would have up to 167",
+    );
+    // Written as made (JSON), the default allows 5e7 patches: a valence-128
+    // globe's 2·4·128·(2^16 − 1) ≈ 6.7e7 are refused.
+    let big = obj_text(&samples::globe(128, 7), Corners::Plain);
+    expect_failure(
+        d,
+        "too-large-streamed",
+        big.as_bytes(),
         &["--depth", "16"],
-        "patches, more than --max-patches 2000000",
+        "patches, more than --max-patches 50000000",
     );
     let max = capdiv_mesh::evaluate::MAX_POLAR_VALENCE;
     assert!(32 << 16 > max);
@@ -1123,13 +1133,17 @@ fn max_patches_refuses_a_larger_surface_and_says_its_size() {
         "cube.obj",
         &obj_text(&samples::cube(), Corners::Plain),
     );
-    let full = surface(&["--depth", "3"], s(&path), None);
+    // Exact at a fixed depth (a tolerance may stop caps earlier: then the
+    // count is an upper bound, tested in surface_tolerance.rs).
+    let full = surface(&["--depth", "3", "--tolerance", "none"], s(&path), None);
     let n = full["patches"].as_array().unwrap().len();
     let at = capdiv(
         &[
             "surface",
             "--depth",
             "3",
+            "--tolerance",
+            "none",
             "--max-patches",
             &n.to_string(),
             s(&path),
@@ -1142,6 +1156,8 @@ fn max_patches_refuses_a_larger_surface_and_says_its_size() {
             "surface",
             "--depth",
             "3",
+            "--tolerance",
+            "none",
             "--max-patches",
             &(n - 1).to_string(),
             s(&path),

@@ -13,6 +13,7 @@
 
 use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
+use crate::hole;
 use crate::mem;
 use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
 use crate::tessellate::PatchGeometry;
@@ -98,6 +99,9 @@ pub struct CapRecord<R> {
     /// Principal curvatures at the limit point: C²PS only (exact, spec
     /// docs/math/c2ps.md §4); EG and Catmull-Clark caps report none.
     pub principal_curvatures: Option<[R; 2]>,
+    /// Rings emitted: the plan's depth, or fewer when the hole tolerance
+    /// ([`Evaluator::set_hole_tolerance`]) was met earlier.
+    pub rings: u32,
 }
 
 /// Receives the surface.
@@ -248,6 +252,8 @@ pub(crate) struct Scratch<R: Real> {
     cnet: Vec<[R; 3]>,
     cc: Vec<Point3<R>>,
     eg: Box<EgSubdivision<'static, R>>,
+    /// A cap stops after the ring whose hole is at most this wide.
+    pub(crate) hole_tolerance: Option<f64>,
 }
 
 impl<R: Real> Scratch<R> {
@@ -263,6 +269,7 @@ impl<R: Real> Scratch<R> {
             cnet: mem::filled(6 * max_ev, [R::ZERO; 3])?,
             cc: mem::filled(CcCap::<R>::storage_len(max_ev.max(3)), Point3::ZERO)?,
             eg: Box::new(EgSubdivision::empty()),
+            hole_tolerance: None,
         })
     }
 }
@@ -293,6 +300,19 @@ impl<R: Real> Evaluator<R> {
                 .filter_map(|n| FourierRule::new(&RuleTable::builtin(n)?).ok())
                 .collect(),
         })
+    }
+
+    /// Each cap emits rings until the hole left inside its last ring is at
+    /// most `tolerance` across (absolute, in the positions' units), and at
+    /// most the plan's depth; `None` (the default): always the plan's depth.
+    /// The hole's width is bounded by twice the largest distance from the
+    /// limit point to a control point of the ring's inner edges (the edges
+    /// lie in their control points' convex hull). The rings of the adaptive
+    /// refinement around irregular points keep the plan's depth.
+    pub fn set_hole_tolerance(&mut self, tolerance: Option<f64>) {
+        for s in core::iter::once(&mut self.scratch).chain(&mut self.extra) {
+            s.hole_tolerance = tolerance;
+        }
     }
 
     /// Evaluates the surface for `positions` (one per input vertex).
@@ -455,10 +475,21 @@ impl<R: Real> Scratch<R> {
         let jet = PoleJet::of_buf(&net);
         let limit = jet.limit();
         let geometry = jet.geometry().ok();
+        let mut rings = 0;
         for m in 1..=depth {
             net.step(if m == 1 { p.first } else { FirstStep::Plain })
                 .map_err(kernel)?;
             let cols = net.valence();
+            let last = m == depth || {
+                let mut radius = 0.0f64;
+                if self.hole_tolerance.is_some() {
+                    for c in 0..cols {
+                        let inner = net.ring_patch(0, c).map_err(kernel)?;
+                        radius = radius.max(hole::edge_radius(&inner, hole::EDGE_U0, limit));
+                    }
+                }
+                hole::small_enough(radius, self.hole_tolerance)
+            };
             // Columns of this level per input triangle.
             let per = cols / n_in.max(1);
             let scale = 1.0 / (1u64 << (m + p.pre)) as f64;
@@ -472,7 +503,7 @@ impl<R: Real> Scratch<R> {
                         ((c % per) + 1) as f64 / per as f64,
                     );
                     let inner = if span == 0 { 1 << 3 } else { 0 };
-                    let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
+                    let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
                     let chart = if r1 <= 1.0 || p.quads.is_empty() {
                         FaceChart {
                             face: tri,
@@ -503,6 +534,10 @@ impl<R: Real> Scratch<R> {
                     ));
                 }
             }
+            if last {
+                rings = m;
+                break;
+            }
         }
         sink.cap(&CapRecord {
             index,
@@ -513,6 +548,7 @@ impl<R: Real> Scratch<R> {
             limit,
             normal: geometry.map(|g| g.normal),
             principal_curvatures: geometry.map(|g| g.principal),
+            rings,
         });
         Ok(())
     }
@@ -544,6 +580,7 @@ impl<R: Real> Scratch<R> {
         let level0 = e.level;
         let emit = |sink: &mut dyn SurfaceSink<R>,
                     m: u32,
+                    last: bool,
                     k: usize,
                     dom: PatchDomain,
                     geometry: Geom<R>,
@@ -562,7 +599,7 @@ impl<R: Real> Scratch<R> {
                 1 => 1,
                 _ => 0,
             };
-            let (finer, hole) = if m == depth { (0, inner) } else { (inner, 0) };
+            let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
             let rec = match geometry {
                 Geom::Cubic(p) => record(
                     kind,
@@ -599,33 +636,59 @@ impl<R: Real> Scratch<R> {
                         let mut eg = EgSubdivision::empty();
                         eg.reset_from_cnet_with_table(&net, *table)
                             .map_err(kernel)?;
-                        run_eg(&mut eg, None, depth, sink, &emit, e, index)?;
+                        run_eg(
+                            &mut eg,
+                            None,
+                            (depth, self.hole_tolerance),
+                            sink,
+                            &emit,
+                            e,
+                            index,
+                        )?;
                     }
                     None => {
                         self.eg.reset_from_cnet(&net).map_err(kernel)?;
                         let n = self.eg.valence();
                         let rule = eg_rules.iter().find(|r| r.valence() == n);
-                        run_eg(&mut self.eg, rule, depth, sink, &emit, e, index)?;
+                        let limits = (depth, self.hole_tolerance);
+                        run_eg(&mut self.eg, rule, limits, sink, &emit, e, index)?;
                     }
                 }
             }
             _ => {
                 let mut cap = CcCap::new(center, nodes, &mut self.cc).map_err(kernel)?;
                 let limit = cap.limit();
+                let mut rings = 0;
                 for m in 1..=depth {
                     cap.step().map_err(kernel)?;
+                    let last = m == depth || {
+                        let mut radius = 0.0f64;
+                        if self.hole_tolerance.is_some() {
+                            for k in (0..cap.ring_len()).filter(|k| k % 3 < 2) {
+                                let inner = cap.ring_patch(k).map_err(kernel)?;
+                                let edge = [hole::EDGE_U0, hole::EDGE_V0][k % 3];
+                                radius = radius.max(hole::edge_radius(&inner, edge, limit));
+                            }
+                        }
+                        hole::small_enough(radius, self.hole_tolerance)
+                    };
                     for k in 0..cap.ring_len() {
                         let patch = cap.ring_patch(k).map_err(kernel)?;
                         let dom = cap.ring_patch_domain(k).map_err(kernel)?;
                         emit(
                             sink,
                             m,
+                            last,
                             k,
                             dom,
                             Geom::Cubic(patch),
                             PatchKind::CatmullClark,
                             limit,
                         );
+                    }
+                    if last {
+                        rings = m;
+                        break;
                     }
                 }
                 sink.cap(&CapRecord {
@@ -637,6 +700,7 @@ impl<R: Real> Scratch<R> {
                     limit,
                     normal: cap.normal().ok(),
                     principal_curvatures: None,
+                    rings,
                 });
             }
         }
@@ -657,14 +721,14 @@ enum Geom<R> {
 fn run_eg<R: Real, F>(
     eg: &mut EgSubdivision<'_, R>,
     rule: Option<&FourierRule<'_, R>>,
-    depth: u32,
+    (depth, tolerance): (u32, Option<f64>),
     sink: &mut dyn SurfaceSink<R>,
     emit: &F,
     e: &EvPlan,
     index: u32,
 ) -> Result<(), EvalError>
 where
-    F: Fn(&mut dyn SurfaceSink<R>, u32, usize, PatchDomain, Geom<R>, PatchKind, Point3<R>),
+    F: Fn(&mut dyn SurfaceSink<R>, u32, bool, usize, PatchDomain, Geom<R>, PatchKind, Point3<R>),
 {
     let kernel = |error| EvalError::Kernel {
         cap: index,
@@ -674,20 +738,44 @@ where
     };
     let limit = eg.c0();
     let mut normal_sum = Point3::ZERO;
+    let mut rings = 0;
     for m in 1..=depth {
         match rule {
             Some(rule) => eg.step_fourier(rule),
             None => eg.step(),
         }
         .map_err(kernel)?;
+        let last = m == depth || {
+            let mut radius = 0.0f64;
+            if tolerance.is_some() {
+                for (k, inner) in eg.ring_patches().enumerate().filter(|(k, _)| k % 3 < 2) {
+                    let edge = [hole::EDGE_U0, hole::EDGE_V0][k % 3];
+                    radius = radius.max(hole::edge_radius(&inner, edge, limit));
+                }
+            }
+            hole::small_enough(radius, tolerance)
+        };
         for (k, patch) in eg.ring_patches().enumerate() {
             let dom = eg.ring_patch_domain(k).map_err(kernel)?;
-            if m == depth && k % 3 == 0 {
+            if last && k % 3 == 0 {
                 if let Ok(nrm) = patch.normal(R::ZERO, R::ZERO) {
                     normal_sum += nrm;
                 }
             }
-            emit(sink, m, k, dom, Geom::Quartic(patch), PatchKind::Eg, limit);
+            emit(
+                sink,
+                m,
+                last,
+                k,
+                dom,
+                Geom::Quartic(patch),
+                PatchKind::Eg,
+                limit,
+            );
+        }
+        if last {
+            rings = m;
+            break;
         }
     }
     let len = normal_sum.norm();
@@ -700,6 +788,7 @@ where
         limit,
         normal: (len > R::ZERO && len.is_finite()).then(|| normal_sum * (R::ONE / len)),
         principal_curvatures: None,
+        rings,
     });
     Ok(())
 }

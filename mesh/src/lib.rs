@@ -65,6 +65,7 @@ pub mod chart;
 pub mod error;
 pub mod evaluate;
 pub mod grid;
+mod hole;
 pub mod input;
 pub mod mem;
 pub mod obj;

@@ -253,7 +253,9 @@ impl<R: Real + Send + Sync> Evaluator<R> {
             let more = threads - 1 - self.extra.len();
             mem::reserve_exact(&mut self.extra, more)?;
             while self.extra.len() + 1 < threads {
-                self.extra.push(Scratch::new(plan, need)?);
+                let mut extra = Scratch::new(plan, need)?;
+                extra.hole_tolerance = self.scratch.hole_tolerance;
+                self.extra.push(extra);
             }
         }
         let pieces = pieces(plan)?;

@@ -18,6 +18,7 @@ pub mod refine;
 pub mod render;
 pub mod spectrum;
 pub mod surface;
+pub mod surface_stream;
 
 use crate::args::Command;
 use crate::error::CliError;

@@ -472,8 +472,10 @@ impl PatchWriter {
 /// aside and renamed over the target at the end (as `Sink::File` does in one
 /// piece); or a FIFO, device or dangling link written through
 /// ([`Target::of`]).
-enum StreamOut {
-    Stdout(std::io::BufWriter<std::io::StdoutLock<'static>>),
+pub(crate) enum StreamOut {
+    /// Unlocked (each buffered chunk takes the lock): the writer may be
+    /// handed to an evaluation thread, and a lock guard cannot move.
+    Stdout(std::io::BufWriter<std::io::Stdout>),
     File {
         w: std::io::BufWriter<std::fs::File>,
         tmp: std::path::PathBuf,
@@ -485,11 +487,11 @@ enum StreamOut {
 }
 
 impl StreamOut {
-    fn open(path: Option<&std::path::Path>) -> Result<Self, CliError> {
+    pub(crate) fn open(path: Option<&std::path::Path>) -> Result<Self, CliError> {
         let Some(path) = path else {
-            return Ok(StreamOut::Stdout(std::io::BufWriter::new(
-                std::io::stdout().lock(),
-            )));
+            return Ok(StreamOut::Stdout(
+                std::io::BufWriter::new(std::io::stdout()),
+            ));
         };
         let io_err = |e: std::io::Error| CliError::Io {
             path: path.display().to_string(),
@@ -513,7 +515,7 @@ impl StreamOut {
         }
     }
 
-    fn commit(&mut self) -> std::io::Result<()> {
+    pub(crate) fn commit(&mut self) -> std::io::Result<()> {
         match self {
             StreamOut::Stdout(w) => w.flush(),
             StreamOut::Through(w) => w.flush(),

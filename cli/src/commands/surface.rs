@@ -25,11 +25,17 @@
 //!   counts, the shell, and for a closed shell the volume it encloses (Gauss
 //!   quadrature over the faces).
 //!
+//! `obj` (f64, a consistently oriented manifold input) and compact `json`
+//! are written as they are produced ([`super::surface_stream`]); the other
+//! outputs are built whole in memory first.
+//!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
 
 use super::Outcome;
-use crate::args::{Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, DEFAULT_MAX_PATCHES};
+use crate::args::{
+    Precision, SurfaceArgs, SurfaceFormat, SurfaceScheme, Tolerance, DEFAULT_MAX_PATCHES,
+};
 use crate::error::{CliError, Naming};
 use crate::export::{gltf, step};
 use crate::input::{parse, Input, Source};
@@ -77,6 +83,22 @@ pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
         mesh.tags.boundary = b.into();
     }
     let name = source.name.as_str();
+    let to_terminal =
+        args.output.is_none() && args.format.is_none() && std::io::stdout().is_terminal();
+    if !to_terminal && super::surface_stream::streams(args, &mesh) {
+        let streamed = match (args.format(), args.precision) {
+            (SurfaceFormat::Obj, _) => {
+                super::surface_stream::obj(name, &naming, &mesh, &tables, args)
+            }
+            (_, Precision::F64) => {
+                super::surface_stream::json::<f64>(name, &naming, &mesh, &tables, args, "f64")
+            }
+            (_, Precision::F32) => {
+                super::surface_stream::json::<f32>(name, &naming, &mesh, &tables, args, "f32")
+            }
+        };
+        return streamed.map_err(|e| e.named(&naming));
+    }
     let input = (&mesh, objects.as_slice());
     let (bytes, report) = match args.precision {
         Precision::F64 => produce::<f64>(name, &naming, input, &tables, args, "f64", WELD_F64),
@@ -85,7 +107,7 @@ pub fn run(args: &SurfaceArgs) -> Result<Outcome, CliError> {
     .map_err(|e| e.named(&naming))?;
     // A terminal gets the summary, not megabytes of patches, unless a
     // format was asked for.
-    if args.output.is_none() && args.format.is_none() && std::io::stdout().is_terminal() {
+    if to_terminal {
         let mut out = Outcome::new(Vec::new(), Sink::Stdout);
         out.report = if args.quiet { String::new() } else { report };
         out.report.push_str(TERMINAL_HINT);
@@ -164,34 +186,26 @@ fn produce<R: Scalar>(
     precision: &str,
     weld: f64,
 ) -> Result<(Vec<u8>, String), CliError> {
-    let cc = args.scheme == SurfaceScheme::CatmullClark;
-    let surface = build_scheme::<R>(
-        name,
-        mesh,
-        args.depth,
+    let options = SchemeOptions {
+        depth: args.depth,
         tables,
         precision,
-        cc,
-        args.max_patches,
-        args.threads.map(|t| t as usize),
-    )?;
+        catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
+        max_patches: args.max_patches.unwrap_or(DEFAULT_MAX_PATCHES),
+        tolerance: args.tolerance,
+        threads: args.threads.map(|t| t as usize),
+    };
+    let surface = build_with::<R>(name, mesh, &options)?;
     // The f64 surface that f32 output is joined and welded by.
     let f64_guide = || -> Result<Option<Surface<f64>>, CliError> {
         if precision != "f32" {
             return Ok(None);
         }
-        let threads = args.threads.map(|t| t as usize);
-        build_scheme::<f64>(
-            name,
-            mesh,
-            args.depth,
-            tables,
-            "f64",
-            cc,
-            args.max_patches,
-            threads,
-        )
-        .map(Some)
+        let options = SchemeOptions {
+            precision: "f64",
+            ..options
+        };
+        build_with::<f64>(name, mesh, &options).map(Some)
     };
     let grid = args.grid as usize;
     let format = args.format();
@@ -229,8 +243,9 @@ fn produce<R: Scalar>(
             let bytes = match format {
                 SurfaceFormat::Obj => {
                     let title = format!(
-                        "capdiv surface --depth {} --grid {grid} --precision {precision} {name}",
-                        args.depth
+                        "capdiv surface --depth {} --tolerance {} --grid {grid} --precision \
+                         {precision} {name}",
+                        args.depth, args.tolerance
                     );
                     obj_text(&tess, &surface.summary, &title).into_bytes()
                 }
@@ -295,8 +310,8 @@ pub fn step_text<R: Scalar>(
         product: name.to_string(),
         time_stamp: step::time_stamp(std::time::SystemTime::now()),
         description: format!(
-            "capdiv surface --depth {} --precision {} {name}",
-            args.depth, precision
+            "capdiv surface --depth {} --tolerance {} --precision {} {name}",
+            args.depth, args.tolerance, precision
         ),
     };
     let text = step::write(&b, &header);
@@ -335,24 +350,62 @@ pub struct Surface<R> {
 struct Collect<R> {
     patches: Vec<PatchRecord<R>>,
     caps: Vec<CapRecord<R>>,
+    /// Bytes of the first growth the allocator refused (the records from
+    /// then on are dropped, and the surface is an out-of-memory error).
+    refused: Option<usize>,
+}
+
+impl<R> Collect<R> {
+    fn new() -> Self {
+        Collect {
+            patches: Vec::new(),
+            caps: Vec::new(),
+            refused: None,
+        }
+    }
+}
+
+/// Pushes `x`, growing `list` fallibly; the bytes asked for when refused.
+fn try_push<T: Clone>(list: &mut Vec<T>, x: &T) -> Result<(), usize> {
+    list.try_reserve(1)
+        .map_err(|_| list.len().saturating_mul(2).max(1) * core::mem::size_of::<T>())?;
+    list.push(x.clone());
+    Ok(())
 }
 
 impl<R: Clone> SurfaceSink<R> for Collect<R> {
     fn patch(&mut self, p: &PatchRecord<R>) {
-        self.patches.push(p.clone());
+        if self.refused.is_none() {
+            self.refused = try_push(&mut self.patches, p).err();
+        }
     }
     fn cap(&mut self, c: &CapRecord<R>) {
-        self.caps.push(c.clone());
+        if self.refused.is_none() {
+            self.refused = try_push(&mut self.caps, c).err();
+        }
     }
 }
 
 /// Refuses a plan of more than `max` patches ([`CliError::TooLarge`]).
 pub fn check_size(name: &str, plan: &SurfacePlan<'_>, max: u64) -> Result<(), CliError> {
+    check_bound(name, plan, max, false)
+}
+
+/// [`check_size`]; `up_to`: caps may stop before the plan's depth, so its
+/// count (`SurfacePlan::patch_count`: regular patches plus, per cap, the
+/// patches of every ring to the depth) is an upper bound.
+pub fn check_bound(
+    name: &str,
+    plan: &SurfacePlan<'_>,
+    max: u64,
+    up_to: bool,
+) -> Result<(), CliError> {
     let patches = plan.patch_count();
     if patches > max {
         return Err(CliError::TooLarge {
             source: name.to_string(),
             patches,
+            up_to,
             max,
         });
     }
@@ -376,15 +429,12 @@ pub fn build<R: Scalar>(
         precision,
         false,
         DEFAULT_MAX_PATCHES,
-        None,
     )
 }
 
 /// [`build`], with Catmull-Clark caps everywhere when `catmull_clark`
 /// (`--scheme catmull-clark`), refusing a surface of more than
-/// `max_patches` patches before making any, evaluated by `threads` threads
-/// (`None`: [`crate::threads::default_threads`]).
-#[allow(clippy::too_many_arguments)]
+/// `max_patches` patches before making any.
 pub fn build_scheme<R: Scalar>(
     name: &str,
     mesh: &MeshInput,
@@ -393,84 +443,179 @@ pub fn build_scheme<R: Scalar>(
     precision: &str,
     catmull_clark: bool,
     max_patches: u64,
-    threads: Option<usize>,
 ) -> Result<Surface<R>, CliError> {
-    let mesh_err = |error| CliError::mesh(name, error);
-    let eval_err = |error| CliError::eval(name, error);
-    let start = Instant::now();
-    let eg_tables = tables.iter().map(Table::rule).collect::<Result<_, _>>()?;
-    let plan = SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            eg_tables,
-            catmull_clark,
-        },
-    )
-    .map_err(mesh_err)?;
-    check_size(name, &plan, max_patches)?;
-    let analysis = start.elapsed();
-
-    let start = Instant::now();
-    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
-    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
-    let mut sink = Collect {
-        patches: Vec::new(),
-        caps: Vec::new(),
+    let options = SchemeOptions {
+        depth,
+        tables,
+        precision,
+        catmull_clark,
+        max_patches,
+        tolerance: Tolerance::None,
+        threads: None,
     };
-    // The surface's patches are held until the output is written: reserved
-    // at once, so that a surface too large for memory is an error.
-    let patches = usize::try_from(plan.patch_count()).unwrap_or(usize::MAX);
-    capdiv_mesh::mem::reserve_exact(&mut sink.patches, patches)
-        .and_then(|()| {
-            capdiv_mesh::mem::reserve_exact(&mut sink.caps, plan.polar.len() + plan.ev.len())
-        })
-        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
-    crate::threads::evaluate(threads, &mut evaluator, &plan, &positions, &mut sink)
-        .map_err(eval_err)?;
-    let evaluation = start.elapsed();
+    build_with(name, mesh, &options)
+}
 
-    let finite = sink
-        .patches
-        .iter()
-        .all(|p| geometry_points(p).all(|q| q.is_finite()))
-        && sink.caps.iter().all(|c| c.limit.is_finite());
-    if !finite {
-        return Err(CliError::NonFiniteResult {
-            source: name.to_string(),
-        });
+/// [`build_scheme`] with all of `surface`'s options.
+pub fn build_with<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    options: &SchemeOptions<'_>,
+) -> Result<Surface<R>, CliError> {
+    let mut sink = Collect::new();
+    let summary = run_scheme::<R>(name, mesh, options, &mut sink)?;
+    if let Some(bytes) = sink.refused {
+        return Err(CliError::out_of_memory(name, bytes));
     }
-    if sink.patches.is_empty() {
-        return Err(CliError::EmptySurface {
-            source: name.to_string(),
-        });
-    }
+    Ok(Surface {
+        patches: sink.patches,
+        caps: sink.caps,
+        summary,
+    })
+}
 
-    let mut patches = PatchCounts::default();
-    for p in &sink.patches {
-        match p.kind {
-            PatchKind::Regular => patches.regular += 1,
-            PatchKind::Polar => patches.polar += 1,
-            PatchKind::Eg => patches.eg += 1,
-            PatchKind::CatmullClark => patches.catmull_clark += 1,
+/// How `surface` plans and evaluates.
+#[derive(Clone, Copy, Debug)]
+pub struct SchemeOptions<'a> {
+    /// Rings every cap emits at most.
+    pub depth: u32,
+    /// `--eg-table` rules.
+    pub tables: &'a [Table],
+    /// `f64` or `f32` (for the summary).
+    pub precision: &'a str,
+    /// Catmull-Clark caps everywhere.
+    pub catmull_clark: bool,
+    /// Refuse a plan of more patches.
+    pub max_patches: u64,
+    /// When caps stop emitting rings.
+    pub tolerance: Tolerance,
+    /// Threads that evaluate (`None`: [`crate::threads::default_threads`]).
+    pub threads: Option<usize>,
+}
+
+/// Counts of the patches and caps passing to another sink.
+pub struct Tally<'a, R> {
+    inner: &'a mut (dyn SurfaceSink<R> + Send),
+    patches: PatchCounts,
+    levels: Vec<usize>,
+    caps: Vec<CapCount>,
+    rings: Option<[u32; 2]>,
+    finite: bool,
+}
+
+impl<'a, R: Scalar> Tally<'a, R> {
+    /// Counts what goes to `inner`.
+    pub fn new(inner: &'a mut (dyn SurfaceSink<R> + Send)) -> Self {
+        Tally {
+            inner,
+            patches: PatchCounts::default(),
+            levels: Vec::new(),
+            caps: Vec::new(),
+            rings: None,
+            finite: true,
         }
-        patches.total += 1;
     }
-    let mut caps: Vec<CapCount> = Vec::new();
-    for c in &sink.caps {
+}
+
+impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.finite &= geometry_points(p).all(|q| q.is_finite());
+        match p.kind {
+            PatchKind::Regular => self.patches.regular += 1,
+            PatchKind::Polar => self.patches.polar += 1,
+            PatchKind::Eg => self.patches.eg += 1,
+            PatchKind::CatmullClark => self.patches.catmull_clark += 1,
+        }
+        self.patches.total += 1;
+        let level = p.level as usize;
+        if self.levels.len() <= level {
+            self.levels.resize(level + 1, 0);
+        }
+        self.levels[level] += 1;
+        self.inner.patch(p);
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.finite &= c.limit.is_finite();
+        self.rings = Some(match self.rings {
+            None => [c.rings; 2],
+            Some([lo, hi]) => [lo.min(c.rings), hi.max(c.rings)],
+        });
         let (scheme, valence) = (c.scheme.id(), c.valence);
-        match caps
+        match self
+            .caps
             .iter_mut()
             .find(|k| k.scheme == scheme && k.valence == valence)
         {
             Some(k) => k.count += 1,
-            None => caps.push(CapCount {
+            None => self.caps.push(CapCount {
                 scheme,
                 valence,
                 count: 1,
             }),
         }
+        self.inner.cap(c);
     }
+}
+
+/// Validates, analyses and evaluates `mesh` in `R` into `sink`, refusing a
+/// surface of more than `options.max_patches` patches before making any;
+/// returns the summary. A surface that is not finite or has no patch is an
+/// error after the evaluation (a streaming sink has then written part of it).
+pub fn run_scheme<R: Scalar>(
+    name: &str,
+    mesh: &MeshInput,
+    options: &SchemeOptions<'_>,
+    sink: &mut (dyn SurfaceSink<R> + Send),
+) -> Result<Summary, CliError> {
+    let mesh_err = |error| CliError::mesh(name, error);
+    let eval_err = |error| CliError::eval(name, error);
+    let start = Instant::now();
+    let eg_tables = options
+        .tables
+        .iter()
+        .map(Table::rule)
+        .collect::<Result<_, _>>()?;
+    let catmull_clark = options.catmull_clark;
+    let plan = SurfacePlan::for_mesh(
+        mesh,
+        PlanOptions {
+            depth: options.depth,
+            eg_tables,
+            catmull_clark,
+        },
+    )
+    .map_err(mesh_err)?;
+    let up_to = options.tolerance != Tolerance::None;
+    check_bound(name, &plan, options.max_patches, up_to)?;
+    let analysis = start.elapsed();
+
+    let start = Instant::now();
+    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
+    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
+    let tolerance = options.tolerance.absolute(diagonal(mesh));
+    evaluator.set_hole_tolerance(tolerance);
+    let mut tally = Tally::new(sink);
+    crate::threads::evaluate(
+        options.threads,
+        &mut evaluator,
+        &plan,
+        &positions,
+        &mut tally,
+    )
+    .map_err(eval_err)?;
+    let evaluation = start.elapsed();
+
+    if !tally.finite {
+        return Err(CliError::NonFiniteResult {
+            source: name.to_string(),
+        });
+    }
+    if tally.patches.total == 0 {
+        return Err(CliError::EmptySurface {
+            source: name.to_string(),
+        });
+    }
+    let mut caps = tally.caps;
     caps.sort_by_key(|k| (k.scheme, k.valence));
     let reasons = |list: &[capdiv_mesh::plan::UncoveredFace]| {
         list.iter()
@@ -481,14 +626,20 @@ pub fn build_scheme<R: Scalar>(
             })
             .collect()
     };
-    let summary = Summary {
+    let mut levels = tally.levels;
+    if levels.is_empty() {
+        levels.push(0);
+    }
+    Ok(Summary {
         input: InputSummary {
             vertices: plan.input_vertices,
             faces: plan.input_faces,
             closed: mesh.tags.holes.is_empty() && Topology::new(mesh).is_ok_and(|t| t.is_closed()),
         },
-        depth,
-        precision: precision.to_string(),
+        depth: options.depth,
+        tolerance,
+        rings: tally.rings,
+        precision: options.precision.to_string(),
         scheme: if catmull_clark {
             SurfaceScheme::CatmullClark
         } else {
@@ -496,26 +647,12 @@ pub fn build_scheme<R: Scalar>(
         }
         .name(),
         tags: TagSummary::of(&mesh.tags),
-        patches,
+        patches: tally.patches,
         caps,
         refinement_steps: plan.steps.len(),
         needed_refinement: reasons(&plan.needed_refinement),
         uncovered: reasons(&plan.uncovered),
-        patches_per_level: {
-            let mut levels = vec![
-                0usize;
-                1 + sink
-                    .patches
-                    .iter()
-                    .map(|p| p.level as usize)
-                    .max()
-                    .unwrap_or(0)
-            ];
-            for p in &sink.patches {
-                levels[p.level as usize] += 1;
-            }
-            levels
-        },
+        patches_per_level: levels,
         last_holes: plan.last_holes.len(),
         fallbacks: plan
             .fallbacks
@@ -531,11 +668,6 @@ pub fn build_scheme<R: Scalar>(
             analysis: analysis.as_secs_f64() * 1e3,
             evaluation: evaluation.as_secs_f64() * 1e3,
         },
-    };
-    Ok(Surface {
-        patches: sink.patches,
-        caps: sink.caps,
-        summary,
     })
 }
 
@@ -645,6 +777,10 @@ pub struct Summary {
     pub input: InputSummary,
     /// `--depth`.
     pub depth: u32,
+    /// The hole tolerance applied (absolute; `None`: every cap `depth` rings).
+    pub tolerance: Option<f64>,
+    /// Fewest and most rings a cap emitted (`None`: no cap).
+    pub rings: Option<[u32; 2]>,
     /// `f64` or `f32`.
     pub precision: String,
     /// `--scheme`: `default` or `catmull-clark`.
@@ -817,6 +953,25 @@ pub struct Times {
     pub analysis: f64,
     /// Evaluation of every patch and cap.
     pub evaluation: f64,
+}
+
+/// The length of the input's bounding-box diagonal (0 for an empty or
+/// non-finite box).
+pub fn diagonal(mesh: &MeshInput) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.vertices {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let d = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    if d.is_finite() {
+        d
+    } else {
+        0.0
+    }
 }
 
 /// The weld tolerance: `factor ×` the largest side of the input's bounding
@@ -1036,6 +1191,22 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>, naming: &Naming)
         s.precision
     );
     let _ = writeln!(t, "  tags         {}", s.tags.text(s.scheme));
+    if let Some([lo, hi]) = s.rings {
+        let range = if lo == hi {
+            format!("{lo}")
+        } else {
+            format!("{lo}-{hi}")
+        };
+        let _ = writeln!(
+            t,
+            "  rings        {range} per cap (--depth {}; {})",
+            s.depth,
+            match s.tolerance {
+                Some(tol) => format!("holes closed at width {}", sig(tol, 3)),
+                None => "no tolerance".to_string(),
+            }
+        );
+    }
     let p = &s.patches;
     let _ = writeln!(
         t,

@@ -30,6 +30,7 @@
 mod check;
 mod obj;
 mod sample;
+pub mod stream;
 pub mod weld;
 
 use alloc::vec;
@@ -38,6 +39,7 @@ use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 
 pub use check::{is_closed_and_oriented, BadEdge, EdgeFault};
 pub use obj::{write_number, write_obj, write_point};
+pub use stream::{MeshSink, ObjWriter, StreamSummary, StreamTessellator, TessellatingSink};
 
 /// Edge `v = 0` of a patch's own square, `u` running from 0 to 1.
 pub const EDGE_V0: u8 = 0;

@@ -1,0 +1,263 @@
+//! `capdiv surface` written as it is produced: `--format obj` (f64) through
+//! the streaming tessellator ([`StreamTessellator`]), `--format json`
+//! (compact) patch by patch. Peak memory is the input, its plan and the
+//! weld front, not the output. The output is the collected one's
+//! ([`super::surface`]): OBJ with the same vertices, normals and faces in
+//! the same order (faces follow their vertices instead of all coming last;
+//! the counts and closedness come as comments at the end), JSON byte for
+//! byte.
+//!
+//! Collected instead: `--precision f32` OBJ (welded where the f64 surface
+//! welds, which needs both), a mesh that is not a consistently oriented
+//! manifold (the weld front relies on each edge having two sides),
+//! `--pretty` JSON, and the formats that need the whole surface (PNG, glTF,
+//! STEP).
+
+use super::patches::StreamOut;
+use super::surface::{
+    closed_text, report, run_scheme, weld_tolerance, CapJson, PatchJson, SchemeOptions, TessInfo,
+    WELD_F64,
+};
+use super::Outcome;
+use crate::args::{SurfaceArgs, SurfaceFormat, SurfaceScheme};
+use crate::error::{CliError, Naming};
+use crate::output::Sink;
+use crate::table::Table;
+use crate::text::{count, sig};
+use capdiv_mesh::tessellate::{MeshSink, ObjWriter, StreamTessellator};
+use capdiv_mesh::{CapRecord, MeshInput, PatchRecord, SurfaceSink, Topology};
+use std::io::Write;
+use std::time::{Duration, Instant};
+
+/// Whether `surface` streams this output (see the module doc).
+pub fn streams(args: &SurfaceArgs, mesh: &MeshInput) -> bool {
+    use crate::args::Precision;
+    match args.format() {
+        SurfaceFormat::Json => !args.pretty,
+        SurfaceFormat::Obj => args.precision == Precision::F64 && Topology::new(mesh).is_ok(),
+        _ => false,
+    }
+}
+
+/// `fmt::Write` over an `io::Write`, keeping the first I/O error.
+struct IoText<'a, W> {
+    w: &'a mut W,
+    error: Option<std::io::Error>,
+}
+
+impl<W: Write> std::fmt::Write for IoText<'_, W> {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.w.write_all(s.as_bytes()).map_err(|e| {
+            self.error.get_or_insert(e);
+            std::fmt::Error
+        })
+    }
+}
+
+fn io_error(args: &SurfaceArgs) -> impl Fn(std::io::Error) -> CliError + '_ {
+    move |e| CliError::Io {
+        path: args
+            .output
+            .as_ref()
+            .map_or("<stdout>".into(), |p| p.display().to_string()),
+        message: e.to_string(),
+    }
+}
+
+fn options<'a>(args: &SurfaceArgs, tables: &'a [Table]) -> SchemeOptions<'a> {
+    SchemeOptions {
+        depth: args.depth,
+        tables,
+        precision: "f64",
+        catmull_clark: args.scheme == SurfaceScheme::CatmullClark,
+        max_patches: args
+            .max_patches
+            .unwrap_or(crate::args::DEFAULT_MAX_STREAMED_PATCHES),
+        tolerance: args.tolerance,
+        threads: args.threads.map(|t| t as usize),
+    }
+}
+
+/// Tessellates the evaluator's patches into an OBJ writer as they come.
+struct ObjStream<'a, W: std::fmt::Write> {
+    tess: StreamTessellator<f64>,
+    obj: &'a mut ObjWriter<W>,
+    time: Duration,
+}
+
+impl<W: std::fmt::Write> SurfaceSink<f64> for ObjStream<'_, W> {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        let start = Instant::now();
+        self.tess
+            .push_record(p, p.level, self.obj as &mut dyn MeshSink<f64>);
+        self.time += start.elapsed();
+    }
+    fn cap(&mut self, _: &CapRecord<f64>) {
+        let start = Instant::now();
+        self.tess.end_group(self.obj as &mut dyn MeshSink<f64>);
+        self.time += start.elapsed();
+    }
+}
+
+/// `--format obj`, f64, streamed.
+pub fn obj(
+    name: &str,
+    naming: &Naming,
+    mesh: &MeshInput,
+    tables: &[Table],
+    args: &SurfaceArgs,
+) -> Result<Outcome, CliError> {
+    let io = io_error(args);
+    let grid = args.grid as usize;
+    let (tolerance, size) = weld_tolerance(mesh, WELD_F64);
+    let mut out = StreamOut::open(args.output.as_deref())?;
+    let title = format!(
+        "capdiv surface --depth {} --tolerance {} --grid {grid} --precision f64 {name}",
+        args.depth, args.tolerance
+    );
+    let weld = format!(
+        "grid {grid}x{grid} per patch; welded within {} ({} x bounding-box size {})",
+        sig(tolerance, 3),
+        sig(WELD_F64, 3),
+        sig(size, 6)
+    );
+    let text = IoText {
+        w: &mut out,
+        error: None,
+    };
+    let mut obj = ObjWriter::new(text, &[&title, &weld]);
+    let mut sink = ObjStream {
+        tess: StreamTessellator::new(grid, tolerance),
+        obj: &mut obj,
+        time: Duration::ZERO,
+    };
+    let result = run_scheme::<f64>(name, mesh, &options(args, tables), &mut sink);
+    let start = Instant::now();
+    let s = sink.tess.finish(sink.obj);
+    let (tess_time, time) = (sink.time, sink.time + start.elapsed());
+    let mut summary = result?;
+    if let Some(e) = obj.out.error.take() {
+        return Err(io(e));
+    }
+    // The evaluation's time without the tessellation it fed.
+    summary.times_ms.evaluation =
+        (summary.times_ms.evaluation - tess_time.as_secs_f64() * 1e3).max(0.0);
+    let info = TessInfo {
+        grid,
+        tolerance,
+        factor: WELD_F64,
+        size,
+        vertices: s.vertices,
+        triangles: s.triangles,
+        quads: s.quads,
+        degenerate_dropped: s.degenerate_dropped,
+        closed: s.closed,
+        time_ms: time.as_secs_f64() * 1e3,
+    };
+    let p = &summary.patches;
+    let trailer = [
+        format!(
+            "{} ({} regular, {} polar, {} eg, {} catmull-clark), {}",
+            count(p.total, "patch", "patches"),
+            p.regular,
+            p.polar,
+            p.eg,
+            p.catmull_clark,
+            count(
+                summary.caps.iter().map(|c| c.count).sum::<usize>(),
+                "cap",
+                "caps"
+            )
+        ),
+        format!(
+            "{}, {} ({}, {}); {}",
+            count(s.vertices, "vertex", "vertices"),
+            count(s.triangles + s.quads, "face", "faces"),
+            count(s.triangles, "triangle", "triangles"),
+            count(s.quads, "quad", "quads"),
+            closed_text(&s.closed)
+        ),
+    ];
+    for line in trailer {
+        writeln!(out, "# {line}").map_err(&io)?;
+    }
+    out.commit().map_err(&io)?;
+    let mut outcome = Outcome::new(Vec::new(), Sink::Stdout);
+    if !args.quiet {
+        outcome.report = report(name, &summary, Some(&info), naming);
+    }
+    Ok(outcome)
+}
+
+/// Writes `{"patches": [...], "caps": [...], "summary": {...}}` compact, a
+/// patch at a time (caps, one per cap, are held for after the patches).
+struct JsonStream<'a, R, W> {
+    out: &'a mut W,
+    patches: usize,
+    caps: Vec<CapJson<R>>,
+    error: Option<std::io::Error>,
+    line: Vec<u8>,
+}
+
+impl<R: crate::Scalar, W: Write> SurfaceSink<R> for JsonStream<'_, R, W> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        if self.error.is_some() {
+            return;
+        }
+        self.line.clear();
+        self.line.extend_from_slice(if self.patches == 0 {
+            b"{\"patches\":["
+        } else {
+            b","
+        });
+        // Cannot fail: plain numbers and strings.
+        let _ = serde_json::to_writer(&mut self.line, &PatchJson::new(p));
+        self.patches += 1;
+        if let Err(e) = self.out.write_all(&self.line) {
+            self.error = Some(e);
+        }
+    }
+    fn cap(&mut self, c: &CapRecord<R>) {
+        self.caps.push(CapJson::new(c));
+    }
+}
+
+/// `--format json` (compact), f64 or f32, streamed.
+pub fn json<R: crate::Scalar>(
+    name: &str,
+    naming: &Naming,
+    mesh: &MeshInput,
+    tables: &[Table],
+    args: &SurfaceArgs,
+    precision: &str,
+) -> Result<Outcome, CliError> {
+    let io = io_error(args);
+    let mut out = StreamOut::open(args.output.as_deref())?;
+    let mut sink = JsonStream::<R, _> {
+        out: &mut out,
+        patches: 0,
+        caps: Vec::new(),
+        error: None,
+        line: Vec::new(),
+    };
+    let mut opts = options(args, tables);
+    opts.precision = precision;
+    let summary = run_scheme::<R>(name, mesh, &opts, &mut sink)?;
+    if let Some(e) = sink.error.take() {
+        return Err(io(e));
+    }
+    let caps = std::mem::take(&mut sink.caps);
+    let mut tail = Vec::new();
+    tail.extend_from_slice(b"],\"caps\":");
+    let _ = serde_json::to_writer(&mut tail, &caps);
+    tail.extend_from_slice(b",\"summary\":");
+    let _ = serde_json::to_writer(&mut tail, &summary);
+    tail.extend_from_slice(b"}\n");
+    out.write_all(&tail).map_err(&io)?;
+    out.commit().map_err(&io)?;
+    let mut outcome = Outcome::new(Vec::new(), Sink::Stdout);
+    if !args.quiet {
+        outcome.report = report(name, &summary, None, naming);
+    }
+    Ok(outcome)
+}

@@ -1,0 +1,730 @@
+//! Streaming welded tessellation: each patch is sampled and triangulated as
+//! it arrives and its vertices and faces go to a [`MeshSink`] at once, so the
+//! memory held is the weld front, not the output.
+//!
+//! The output is the welded mesh [`super::tessellate`] makes of the same
+//! patches in the same order: the same vertices (numbered in the order of
+//! their first sample, same positions and normals) and the same faces in the
+//! same order, whenever welding joins no chain of samples that are each
+//! within the tolerance of the next but not of each other (then the
+//! collected tessellation merges the chain, the stream keeps its first
+//! vertex and joins the sample to the lowest-numbered close one).
+//!
+//! # What is kept
+//!
+//! A vertex stays in the weld table while more samples may still weld into
+//! it. Each sample records the share of a full turn around it that its patch
+//! covers (in quarter turns): 1 at a patch corner, 2 on an edge or at the
+//! midpoint of a finer edge, 4 inside; a hole edge adds the 2 of the fan
+//! beyond it to its inner samples. A vertex whose turns add up to 4 is
+//! surrounded by the patches that sample it and leaves the table when the
+//! patch completing it is done. What never adds up stays: samples on the
+//! surface's boundary (until [`StreamTessellator::finish`]), and the
+//! corners of a cap's last hole and the hole's point, whose fans span an
+//! angle of the hole's shape: they stay until the group of patches they
+//! belong to ends (a cap's patches, or the patches of no cap, which the
+//! evaluator gives before every cap).
+//!
+//! So the table holds the open edges between the patches done and the
+//! patches to come: for a [`crate::Evaluator`]'s order, the boundaries
+//! between the regular patches and the caps still to come (proportional to
+//! the input mesh) and one cap's rings.
+//!
+//! A vertex is handed to the sink once its normal is final: at once when its
+//! first sample has a normal (`∂u × ∂v` not zero), otherwise when it leaves
+//! the table (a cap's limit point, made of hole points only, gets the
+//! normalised area-weighted sum of its faces' normals, as in
+//! [`super::Tessellation::normals`]). Vertices and faces are handed over in
+//! order, so output behind a vertex waiting for its normal waits too: one
+//! cap's last ring, or, for holes of patches of no cap (adaptive rings
+//! around irregular points), what follows the first such hole among those
+//! patches.
+//!
+//! Limits: on a non-manifold surface (an edge of three patches, a corner of
+//! more than four outside a hole) a vertex can leave the table before its
+//! last sample, which then makes a second vertex; the closedness check sees
+//! each edge in order and reports an edge used more than twice as unpaired
+//! or as used twice in the same direction.
+
+use super::sample::Raw;
+use super::{BadEdge, EdgeFault, Face, TessPatch};
+use crate::evaluate::{CapRecord, PatchRecord, SurfaceSink};
+use alloc::collections::VecDeque;
+use alloc::vec::Vec;
+use capdiv::{Point3, Real};
+use core::fmt::{Display, LowerExp, Write};
+use hashbrown::HashMap;
+
+/// Receives a streamed tessellation.
+pub trait MeshSink<R> {
+    /// The next vertex (numbered 0, 1, … in call order) and its unit normal
+    /// (zero where every sample is degenerate).
+    fn vertex(&mut self, position: Point3<R>, normal: Point3<R>);
+    /// A face over vertices already given, with its patch's tag.
+    fn face(&mut self, face: Face, tag: u32);
+}
+
+/// Collects a streamed tessellation into a [`super::Tessellation`] (its
+/// `samples` and `degenerate_dropped` from [`StreamSummary`]).
+impl<R> MeshSink<R> for super::Tessellation<R> {
+    fn vertex(&mut self, position: Point3<R>, normal: Point3<R>) {
+        self.positions.push(position);
+        self.normals.push(normal);
+    }
+    fn face(&mut self, face: Face, tag: u32) {
+        self.faces.push(face);
+        self.tags.push(tag);
+    }
+}
+
+/// Counts of a finished stream.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StreamSummary {
+    /// Vertices handed over.
+    pub vertices: usize,
+    /// Triangles handed over.
+    pub triangles: usize,
+    /// Quads handed over.
+    pub quads: usize,
+    /// Samples taken (grid points, edge midpoints, hole points).
+    pub samples: usize,
+    /// Faces dropped because welding made two of their corners equal.
+    pub degenerate_dropped: usize,
+    /// The closedness check ([`super::is_closed_and_oriented`] on a
+    /// manifold output; see the module doc).
+    pub closed: Result<(), BadEdge>,
+    /// The most vertices the weld table held at once.
+    pub peak_weld: usize,
+    /// The most vertices and faces waiting at once for a vertex's normal.
+    pub peak_waiting: usize,
+}
+
+/// No slot.
+const NONE: u32 = u32::MAX;
+/// A full turn, in quarter turns.
+const WHOLE: u8 = 4;
+/// Cell size in tolerances (as [`super::weld`]).
+const CELL: f64 = 32.0;
+
+/// A vertex in the weld table.
+struct Slot<R> {
+    /// Its first sample's coordinates in `f64` (`−0` made `+0`).
+    x: [f64; 3],
+    key: [i64; 3],
+    /// The next slot of its cell.
+    next: u32,
+    vertex: u32,
+    /// Quarter turns covered so far (saturating).
+    turns: u8,
+    /// Kept until its group ends (a hole's point or corner).
+    pinned: bool,
+    live: bool,
+    position: Point3<R>,
+    normal: Point3<R>,
+    /// Some patch sample (not only hole points) went into it.
+    sampled: bool,
+    /// Hole points only: twice the vector area of its faces.
+    area: Point3<R>,
+    /// Its normal is final (handed over, or set in the waiting queue).
+    done: bool,
+    /// Its place in the waiting queue (absolute), when not handed over.
+    seq: u64,
+}
+
+/// Output waiting for a vertex's normal.
+enum Waiting<R> {
+    Vertex(Point3<R>, Option<Point3<R>>),
+    Face(Face, u32),
+}
+
+/// An edge used by one face so far.
+struct OpenEdge {
+    from: u32,
+    to: u32,
+    seq: u64,
+    face: usize,
+}
+
+/// Streaming welded tessellator (see the module doc).
+pub struct StreamTessellator<R> {
+    raw: Raw<R>,
+    grid: usize,
+    tol: f64,
+    cells: HashMap<[i64; 3], u32>,
+    slots: Vec<Slot<R>>,
+    free: Vec<u32>,
+    live: usize,
+    /// Per sample of the current patch: its slot, turns, pinned.
+    local: Vec<u32>,
+    turns: Vec<u8>,
+    pin: Vec<bool>,
+    /// The current group (`None` before the first patch).
+    group: Option<Option<u32>>,
+    pins: Vec<u32>,
+    queue: VecDeque<Waiting<R>>,
+    queue_front: u64,
+    edges: HashMap<u64, OpenEdge>,
+    edge_seq: u64,
+    blame: Option<(u64, BadEdge)>,
+    summary: StreamSummary,
+}
+
+impl<R: Real> StreamTessellator<R> {
+    /// A tessellator with `grid` segments per patch side (`0` taken as 1)
+    /// that welds samples within `weld_tolerance` (per coordinate; negative
+    /// or NaN taken as 0: equal coordinates only), as [`super::tessellate`].
+    pub fn new(grid: usize, weld_tolerance: R) -> Self {
+        let tol = weld_tolerance.to_f64();
+        StreamTessellator {
+            raw: Raw::new(grid.max(1)),
+            grid: grid.max(1),
+            tol: if tol > 0.0 { tol } else { 0.0 },
+            cells: HashMap::new(),
+            slots: Vec::new(),
+            free: Vec::new(),
+            live: 0,
+            local: Vec::new(),
+            turns: Vec::new(),
+            pin: Vec::new(),
+            group: None,
+            pins: Vec::new(),
+            queue: VecDeque::new(),
+            queue_front: 0,
+            edges: HashMap::new(),
+            edge_seq: 0,
+            blame: None,
+            summary: StreamSummary {
+                vertices: 0,
+                triangles: 0,
+                quads: 0,
+                samples: 0,
+                degenerate_dropped: 0,
+                closed: Ok(()),
+                peak_weld: 0,
+                peak_waiting: 0,
+            },
+        }
+    }
+
+    /// Tessellates one patch of `group` (a cap's index; `None`: no cap) and
+    /// hands what is final to `sink`. A patch of another group than the
+    /// previous one ends that group ([`Self::end_group`]).
+    ///
+    /// # Panics
+    ///
+    /// If the vertices outnumber `u32::MAX`.
+    pub fn push(&mut self, p: &TessPatch<R>, group: Option<u32>, sink: &mut dyn MeshSink<R>) {
+        if self.group != Some(group) {
+            self.end_group(sink);
+            self.group = Some(group);
+        }
+        self.raw.positions.clear();
+        self.raw.normals.clear();
+        self.raw.faces.clear();
+        self.raw.tags.clear();
+        self.raw.push(p);
+        self.classify(p);
+        let count = self.raw.positions.len();
+        self.summary.samples += count;
+        self.local.clear();
+        for k in 0..count {
+            let s = self.weld(k);
+            self.local.push(s);
+        }
+        for f in 0..self.raw.faces.len() {
+            let (face, tag) = (self.raw.faces[f], self.raw.tags[f]);
+            self.face(face, tag);
+        }
+        for k in 0..count {
+            let s = self.local[k];
+            let slot = &self.slots[s as usize];
+            if slot.live && !slot.pinned && slot.turns >= WHOLE {
+                self.evict(s);
+            }
+        }
+        self.flush(sink);
+    }
+
+    /// [`Self::push`] of an evaluator's patch, tagged `tag`, grouped by its cap.
+    pub fn push_record(&mut self, p: &PatchRecord<R>, tag: u32, sink: &mut dyn MeshSink<R>) {
+        let t = TessPatch {
+            geometry: p.geometry,
+            finer: p.finer,
+            hole: p.hole,
+            hole_point: p.hole_point,
+            tag,
+        };
+        self.push(&t, p.cap, sink);
+    }
+
+    /// Ends the current group: its holes' points and corners leave the
+    /// table, their vertices get their normals, and what waited for them is
+    /// handed over.
+    pub fn end_group(&mut self, sink: &mut dyn MeshSink<R>) {
+        let pins = core::mem::take(&mut self.pins);
+        for &s in &pins {
+            if self.slots[s as usize].live {
+                self.slots[s as usize].pinned = false;
+                self.evict(s);
+            }
+        }
+        self.pins = pins;
+        self.pins.clear();
+        self.flush(sink);
+    }
+
+    /// Ends the stream: every vertex still held gets its normal and is handed
+    /// over with the faces waiting for it. Returns the counts.
+    pub fn finish(&mut self, sink: &mut dyn MeshSink<R>) -> StreamSummary {
+        self.end_group(sink);
+        for s in 0..self.slots.len() {
+            if self.slots[s].live {
+                self.evict(s as u32);
+            }
+        }
+        self.flush(sink);
+        let mut first = self.blame;
+        for e in self.edges.values() {
+            if first.is_none_or(|(t, _)| e.seq < t) {
+                first = Some((
+                    e.seq,
+                    BadEdge {
+                        from: e.from,
+                        to: e.to,
+                        face: e.face,
+                        fault: EdgeFault::Unpaired,
+                    },
+                ));
+            }
+        }
+        self.summary.closed = match first {
+            None => Ok(()),
+            Some((_, b)) => Err(b),
+        };
+        self.summary
+    }
+
+    /// The counts so far.
+    pub fn summary(&self) -> StreamSummary {
+        self.summary
+    }
+
+    /// Turns and pins of the current patch's samples, from the layout of
+    /// [`Raw::push`]: `(n+1)²` grid points (`a` along `u` after `a`), then
+    /// `n` midpoints per finer edge in edge order, then the hole point.
+    fn classify(&mut self, p: &TessPatch<R>) {
+        let n = self.grid;
+        let side = n + 1;
+        let count = self.raw.positions.len();
+        self.turns.clear();
+        self.pin.clear();
+        for k in 0..count {
+            let t = if k < side * side {
+                let (a, b) = (k / side, k % side);
+                match (a == 0 || a == n, b == 0 || b == n) {
+                    (true, true) => 1,
+                    (true, false) | (false, true) => 2,
+                    _ => WHOLE,
+                }
+            } else {
+                2
+            };
+            self.turns.push(t);
+            self.pin.push(false);
+        }
+        if p.hole & 0xf == 0 {
+            return;
+        }
+        // The hole point.
+        self.turns[count - 1] = 0;
+        self.pin[count - 1] = true;
+        let idx = |a: usize, b: usize| a * side + b;
+        let mut mid = side * side;
+        for e in 0..4u8 {
+            let finer = p.finer & (1 << e) != 0;
+            if p.hole & (1 << e) != 0 {
+                let (from, to) = match e {
+                    0 => (idx(0, 0), idx(n, 0)),
+                    1 => (idx(n, 0), idx(n, n)),
+                    2 => (idx(n, n), idx(0, n)),
+                    _ => (idx(0, n), idx(0, 0)),
+                };
+                for c in 1..n {
+                    let k = match e {
+                        0 => idx(c, 0),
+                        1 => idx(n, c),
+                        2 => idx(c, n),
+                        _ => idx(0, c),
+                    };
+                    self.turns[k] = self.turns[k].saturating_add(2);
+                }
+                if finer {
+                    for k in mid..mid + n {
+                        self.turns[k] = self.turns[k].saturating_add(2);
+                    }
+                }
+                self.pin[from] = true;
+                self.pin[to] = true;
+            }
+            if finer {
+                mid += n;
+            }
+        }
+    }
+
+    /// Welds sample `k` of the current patch; returns its slot.
+    fn weld(&mut self, k: usize) -> u32 {
+        let position = self.raw.positions[k];
+        let x = position.0.map(|c| c.to_f64() + 0.0);
+        let s = match self.find(&x) {
+            Some(s) => s,
+            None => self.insert(x, position),
+        };
+        let new = self.slots[s as usize].vertex == NONE;
+        {
+            let slot = &mut self.slots[s as usize];
+            slot.turns = slot.turns.saturating_add(self.turns[k]);
+            if let Some(nrm) = self.raw.normals[k] {
+                slot.sampled = true;
+                if slot.normal == Point3::ZERO {
+                    slot.normal = nrm;
+                }
+            }
+        }
+        if self.pin[k] && !self.slots[s as usize].pinned {
+            self.slots[s as usize].pinned = true;
+            self.pins.push(s);
+        }
+        if new {
+            let vertex = u32::try_from(self.summary.vertices)
+                .expect("tessellate: more than u32::MAX vertices");
+            self.summary.vertices += 1;
+            let seq = self.queue_front + self.queue.len() as u64;
+            let slot = &mut self.slots[s as usize];
+            slot.vertex = vertex;
+            slot.seq = seq;
+            let known = (slot.sampled && slot.normal != Point3::ZERO).then_some(slot.normal);
+            slot.done = known.is_some();
+            self.queue.push_back(Waiting::Vertex(slot.position, known));
+        } else {
+            let slot = &self.slots[s as usize];
+            if !slot.done && slot.sampled && slot.normal != Point3::ZERO {
+                self.finalize(s);
+            }
+        }
+        s
+    }
+
+    /// The slot of the lowest-numbered vertex within the tolerance of `x`.
+    fn find(&self, x: &[f64; 3]) -> Option<u32> {
+        let tol = self.tol;
+        let mut best: Option<u32> = None;
+        let mut consider = |s: u32| {
+            let slot = &self.slots[s as usize];
+            if (0..3).all(|d| libm::fabs(x[d] - slot.x[d]) <= tol)
+                && best.is_none_or(|b| slot.vertex < self.slots[b as usize].vertex)
+            {
+                best = Some(s);
+            }
+        };
+        if tol == 0.0 {
+            let mut s = self.cells.get(&self.key(x)).copied().unwrap_or(NONE);
+            while s != NONE {
+                consider(s);
+                s = self.slots[s as usize].next;
+            }
+            return best;
+        }
+        let lo = x.map(|c| self.key_of(c - tol));
+        let hi = x.map(|c| self.key_of(c + tol));
+        for i in lo[0]..=hi[0].min(lo[0].saturating_add(1)) {
+            for j in lo[1]..=hi[1].min(lo[1].saturating_add(1)) {
+                for l in lo[2]..=hi[2].min(lo[2].saturating_add(1)) {
+                    let mut s = self.cells.get(&[i, j, l]).copied().unwrap_or(NONE);
+                    while s != NONE {
+                        consider(s);
+                        s = self.slots[s as usize].next;
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    fn key_of(&self, x: f64) -> i64 {
+        if self.tol == 0.0 {
+            x.to_bits() as i64
+        } else {
+            // Saturating cast; NaN gives 0.
+            libm::floor(x / (CELL * self.tol)) as i64
+        }
+    }
+
+    fn key(&self, x: &[f64; 3]) -> [i64; 3] {
+        x.map(|c| self.key_of(c))
+    }
+
+    /// A new slot for a new vertex (its number set by the caller).
+    fn insert(&mut self, x: [f64; 3], position: Point3<R>) -> u32 {
+        let key = self.key(&x);
+        let head = self.cells.get(&key).copied().unwrap_or(NONE);
+        let slot = Slot {
+            x,
+            key,
+            next: head,
+            vertex: NONE,
+            turns: 0,
+            pinned: false,
+            live: true,
+            position,
+            normal: Point3::ZERO,
+            sampled: false,
+            area: Point3::ZERO,
+            done: false,
+            seq: 0,
+        };
+        let s = match self.free.pop() {
+            Some(s) => {
+                self.slots[s as usize] = slot;
+                s
+            }
+            None => {
+                self.slots.push(slot);
+                (self.slots.len() - 1) as u32
+            }
+        };
+        self.cells.insert(key, s);
+        self.live += 1;
+        self.summary.peak_weld = self.summary.peak_weld.max(self.live);
+        s
+    }
+
+    /// Takes a slot out of the table; its vertex's normal becomes final.
+    fn evict(&mut self, s: u32) {
+        self.finalize(s);
+        let key = self.slots[s as usize].key;
+        let next = self.slots[s as usize].next;
+        let head = self.cells.get(&key).copied().unwrap_or(NONE);
+        if head == s {
+            if next == NONE {
+                self.cells.remove(&key);
+            } else {
+                self.cells.insert(key, next);
+            }
+        } else {
+            let mut t = head;
+            while t != NONE {
+                if self.slots[t as usize].next == s {
+                    self.slots[t as usize].next = next;
+                    break;
+                }
+                t = self.slots[t as usize].next;
+            }
+        }
+        let slot = &mut self.slots[s as usize];
+        slot.live = false;
+        slot.pinned = false;
+        slot.vertex = NONE;
+        self.free.push(s);
+        self.live -= 1;
+    }
+
+    /// Sets the waiting vertex's normal: the first sample normal, or the
+    /// normalised area of its faces for a vertex of hole points only.
+    fn finalize(&mut self, s: u32) {
+        let slot = &mut self.slots[s as usize];
+        if slot.done {
+            return;
+        }
+        slot.done = true;
+        let normal = if slot.sampled {
+            slot.normal
+        } else {
+            let len = slot.area.norm();
+            if len > R::ZERO && len.is_finite() {
+                slot.area * (R::ONE / len)
+            } else {
+                Point3::ZERO
+            }
+        };
+        let at = (slot.seq - self.queue_front) as usize;
+        if let Some(Waiting::Vertex(_, n)) = self.queue.get_mut(at) {
+            *n = Some(normal);
+        }
+    }
+
+    /// One face of the current patch, in sample indices.
+    fn face(&mut self, f: Face, tag: u32) {
+        let slots: Face = f.map(|k| self.local[k as usize]);
+        let face = slots.map(|s| self.slots[s as usize].vertex);
+        if face.is_degenerate() {
+            self.summary.degenerate_dropped += 1;
+            return;
+        }
+        let c = slots.corners();
+        // Hole points only: the face's twice vector area (Newell), about its
+        // first corner, as `super::tessellate` sums it.
+        if c.iter().any(|&s| !self.slots[s as usize].sampled) {
+            let p0 = self.slots[c[0] as usize].position;
+            let mut area = Point3::ZERO;
+            for i in 1..c.len() - 1 {
+                let a = self.slots[c[i] as usize].position - p0;
+                let b = self.slots[c[i + 1] as usize].position - p0;
+                area += a.cross(b);
+            }
+            for &s in c {
+                let slot = &mut self.slots[s as usize];
+                if !slot.sampled {
+                    slot.area += area;
+                }
+            }
+        }
+        let index = self.summary.triangles + self.summary.quads;
+        match face {
+            Face::Tri(_) => self.summary.triangles += 1,
+            Face::Quad(_) => self.summary.quads += 1,
+        }
+        let v = face.corners();
+        for i in 0..v.len() {
+            self.edge(v[i], v[(i + 1) % v.len()], index);
+        }
+        self.queue.push_back(Waiting::Face(face, tag));
+    }
+
+    /// One directed edge of face `face`, for the closedness check.
+    fn edge(&mut self, a: u32, b: u32, face: usize) {
+        let seq = self.edge_seq;
+        self.edge_seq += 1;
+        let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+        let mut blame = |seq: u64, from: u32, to: u32, face: usize, fault: EdgeFault| {
+            if self.blame.is_none_or(|(t, _)| seq < t) {
+                self.blame = Some((
+                    seq,
+                    BadEdge {
+                        from,
+                        to,
+                        face,
+                        fault,
+                    },
+                ));
+            }
+        };
+        match self.edges.remove(&key) {
+            None => {
+                self.edges.insert(
+                    key,
+                    OpenEdge {
+                        from: a,
+                        to: b,
+                        seq,
+                        face,
+                    },
+                );
+            }
+            Some(first) if first.from == a => {
+                blame(first.seq, a, b, first.face, EdgeFault::SameDirection);
+            }
+            Some(_) => {}
+        }
+    }
+
+    /// Hands over the waiting output up to the first vertex without a normal.
+    fn flush(&mut self, sink: &mut dyn MeshSink<R>) {
+        self.summary.peak_waiting = self.summary.peak_waiting.max(self.queue.len());
+        while let Some(front) = self.queue.front() {
+            match *front {
+                Waiting::Vertex(p, Some(n)) => sink.vertex(p, n),
+                Waiting::Vertex(_, None) => break,
+                Waiting::Face(f, tag) => sink.face(f, tag),
+            }
+            self.queue.pop_front();
+            self.queue_front += 1;
+        }
+    }
+}
+
+/// A [`SurfaceSink`] that tessellates the evaluator's patches as they come
+/// ([`StreamTessellator::push_record`], each face tagged `tag(its patch)`)
+/// and ends each cap's group at its record. Call
+/// [`StreamTessellator::finish`] after the evaluation.
+pub struct TessellatingSink<'a, R, S> {
+    /// The tessellator.
+    pub tess: &'a mut StreamTessellator<R>,
+    /// Where the vertices and faces go.
+    pub out: &'a mut S,
+    /// The tag of a patch's faces.
+    pub tag: fn(&PatchRecord<R>) -> u32,
+}
+
+impl<R: Real, S: MeshSink<R>> SurfaceSink<R> for TessellatingSink<'_, R, S> {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.tess.push_record(p, (self.tag)(p), self.out);
+    }
+    fn cap(&mut self, _: &CapRecord<R>) {
+        self.tess.end_group(self.out);
+    }
+}
+
+/// A [`MeshSink`] that writes Wavefront OBJ text as it comes: a `v` and a
+/// `vn` line per vertex and an `f a//a b//b c//c` line per face (1-based),
+/// numbers as [`super::write_number`]. The lines are those of
+/// [`super::write_obj`] for the same tessellation, faces interleaved with
+/// the vertices (every face after its vertices). The first write error is
+/// kept in [`ObjWriter::error`] and later output dropped.
+pub struct ObjWriter<W> {
+    /// The text output.
+    pub out: W,
+    /// The first write error.
+    pub error: core::fmt::Result,
+    vertices: u64,
+    line: alloc::string::String,
+}
+
+impl<W: Write> ObjWriter<W> {
+    /// A writer that first writes `header` lines as `#` comments.
+    pub fn new(mut out: W, header: &[&str]) -> Self {
+        let mut error = Ok(());
+        for line in header {
+            if error.is_ok() {
+                error = writeln!(out, "# {line}");
+            }
+        }
+        ObjWriter {
+            out,
+            error,
+            vertices: 0,
+            line: alloc::string::String::new(),
+        }
+    }
+
+    /// Vertices written so far.
+    pub fn vertices(&self) -> u64 {
+        self.vertices
+    }
+}
+
+impl<R: Real + Display + LowerExp, W: Write> MeshSink<R> for ObjWriter<W> {
+    fn vertex(&mut self, position: Point3<R>, normal: Point3<R>) {
+        self.vertices += 1;
+        if self.error.is_err() {
+            return;
+        }
+        self.line.clear();
+        super::write_point(&mut self.line, "v", position.0);
+        super::write_point(&mut self.line, "vn", normal.0);
+        self.error = self.out.write_str(&self.line);
+    }
+    fn face(&mut self, face: Face, _tag: u32) {
+        if self.error.is_err() {
+            return;
+        }
+        self.line.clear();
+        self.line.push('f');
+        for &i in face.corners() {
+            let i = i as u64 + 1;
+            let _ = write!(self.line, " {i}//{i}");
+        }
+        self.line.push('\n');
+        self.error = self.out.write_str(&self.line);
+    }
+}

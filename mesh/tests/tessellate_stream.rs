@@ -1,0 +1,304 @@
+//! Streaming tessellation (`capdiv_mesh::tessellate::stream`) against the
+//! collected one (`tessellate`): the same welded mesh — vertices in the same
+//! order with the same positions and normals, the same faces in the same
+//! order, the same closedness verdict — on the sample meshes (caps of every
+//! scheme, adaptive refinement with tags, open meshes), while the weld table
+//! holds a front whose size does not grow with the depth.
+
+use capdiv_mesh::samples;
+use capdiv_mesh::tessellate::{
+    is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter, StreamSummary,
+    StreamTessellator, TessPatch, TessellatingSink, Tessellation,
+};
+use capdiv_mesh::{
+    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
+};
+
+/// Every patch and cap, in the evaluator's order.
+#[derive(Default)]
+struct Collect {
+    patches: Vec<PatchRecord<f64>>,
+}
+
+impl SurfaceSink<f64> for Collect {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        self.patches.push(p.clone());
+    }
+    fn cap(&mut self, _: &CapRecord<f64>) {}
+}
+
+fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
+    SurfacePlan::for_mesh(
+        mesh,
+        PlanOptions {
+            depth,
+            ..Default::default()
+        },
+    )
+    .expect("plan")
+}
+
+fn patches(mesh: &MeshInput, depth: u32) -> Vec<PatchRecord<f64>> {
+    let plan = plan(mesh, depth);
+    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+    let mut c = Collect::default();
+    ev.evaluate(&plan, &mesh.vertices, &mut c)
+        .expect("evaluate");
+    c.patches
+}
+
+fn tess_patch(p: &PatchRecord<f64>) -> TessPatch<f64> {
+    TessPatch {
+        geometry: p.geometry,
+        finer: p.finer,
+        hole: p.hole,
+        hole_point: p.hole_point,
+        tag: p.level,
+    }
+}
+
+/// The CLI's weld tolerance: 1e-9 of the bounding box's largest side.
+fn weld_tolerance(mesh: &MeshInput) -> f64 {
+    let mut size: f64 = 0.0;
+    for k in 0..3 {
+        let lo = mesh
+            .vertices
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::INFINITY, f64::min);
+        let hi = mesh
+            .vertices
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        size = size.max(hi - lo);
+    }
+    1e-9 * size
+}
+
+/// The streamed tessellation of `patches`, collected by the sink.
+fn streamed(
+    patches: &[PatchRecord<f64>],
+    grid: usize,
+    tol: f64,
+) -> (Tessellation<f64>, StreamSummary) {
+    let mut tess = StreamTessellator::new(grid, tol);
+    let mut out = Tessellation::default();
+    for p in patches {
+        tess.push_record(p, p.level, &mut out);
+    }
+    let summary = tess.finish(&mut out);
+    (out, summary)
+}
+
+fn meshes() -> Vec<(&'static str, MeshInput)> {
+    vec![
+        ("globe", samples::globe(8, 6)),
+        ("mushroom", samples::mushroom()),
+        ("hand", samples::hand()),
+        ("cube", samples::cube()),
+        ("rounded cube", samples::rounded_cube(2)),
+        ("two-beam corner", samples::two_beam_corner()),
+        ("torus", samples::torus(6, 5)),
+        ("grid (open)", samples::grid(4, 3)),
+        (
+            "extraordinary disk (open)",
+            samples::extraordinary_disk(5, 2),
+        ),
+        (
+            "triangle and pentagon",
+            samples::triangle_and_pentagon_mesh(),
+        ),
+        ("pole disk (open)", samples::pole_disk(7, 3)),
+        ("feature mix (tags)", samples::feature_mix(200)),
+    ]
+}
+
+fn assert_same(
+    name: &str,
+    collected: &Tessellation<f64>,
+    got: &Tessellation<f64>,
+    s: &StreamSummary,
+) {
+    assert_eq!(
+        got.positions.len(),
+        collected.positions.len(),
+        "{name}: vertices"
+    );
+    // Positions are first samples, normals computed by the same formulas in
+    // the same order: equal bit for bit.
+    assert!(got.positions == collected.positions, "{name}: positions");
+    assert!(got.normals == collected.normals, "{name}: normals");
+    assert_eq!(got.faces, collected.faces, "{name}: faces");
+    assert_eq!(got.tags, collected.tags, "{name}: tags");
+    assert_eq!(s.samples, collected.samples, "{name}: samples");
+    assert_eq!(s.degenerate_dropped, collected.degenerate_dropped, "{name}");
+    assert_eq!(s.vertices, collected.positions.len(), "{name}");
+    assert_eq!(s.triangles + s.quads, collected.faces.len(), "{name}");
+    assert_eq!(
+        s.closed,
+        is_closed_and_oriented(&collected.faces),
+        "{name}: closedness"
+    );
+}
+
+#[test]
+fn streamed_tessellation_equals_the_collected_one() {
+    for (name, mesh) in meshes() {
+        let tol = weld_tolerance(&mesh);
+        for depth in [1, 3] {
+            let ps = patches(&mesh, depth);
+            for grid in [1, 4] {
+                let collected = tessellate(ps.iter().map(tess_patch), grid, tol);
+                let (got, s) = streamed(&ps, grid, tol);
+                let what = format!("{name}, depth {depth}, grid {grid}");
+                assert_same(&what, &collected, &got, &s);
+                assert!(s.peak_weld <= got.positions.len(), "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn streamed_tessellation_welds_equal_coordinates_with_tolerance_zero() {
+    for (name, mesh) in [("hand", samples::hand()), ("globe", samples::globe(6, 5))] {
+        let ps = patches(&mesh, 2);
+        let collected = tessellate(ps.iter().map(tess_patch), 3, 0.0);
+        let (got, s) = streamed(&ps, 3, 0.0);
+        assert_same(name, &collected, &got, &s);
+    }
+}
+
+#[test]
+fn tessellating_sink_streams_the_evaluation() {
+    let mesh = samples::mushroom();
+    let plan = plan(&mesh, 3);
+    let tol = weld_tolerance(&mesh);
+    let ps = patches(&mesh, 3);
+    let collected = tessellate(ps.iter().map(tess_patch), 4, tol);
+
+    let mut tess = StreamTessellator::new(4, tol);
+    let mut out = Tessellation::default();
+    let mut sink = TessellatingSink {
+        tess: &mut tess,
+        out: &mut out,
+        tag: |p| p.level,
+    };
+    let mut ev = Evaluator::<f64>::new(&plan).unwrap();
+    ev.evaluate(&plan, &mesh.vertices, &mut sink).unwrap();
+    let s = tess.finish(&mut out);
+    assert_same("mushroom through the sink", &collected, &out, &s);
+    assert_eq!(s.closed, Ok(()));
+}
+
+#[test]
+fn obj_writer_writes_the_lines_of_write_obj() {
+    let mesh = samples::globe(6, 4);
+    let tol = weld_tolerance(&mesh);
+    let ps = patches(&mesh, 2);
+    let collected = tessellate(ps.iter().map(tess_patch), 2, tol);
+    let whole = write_obj(&collected, &[]);
+
+    let mut tess = StreamTessellator::new(2, tol);
+    let mut w = ObjWriter::new(String::new(), &["streamed"]);
+    for p in &ps {
+        tess.push_record(p, 0, &mut w);
+    }
+    tess.finish(&mut w);
+    assert_eq!(w.error, Ok(()));
+    assert!(w.out.starts_with("# streamed\n"));
+    // Each face comes after its vertices; the vertex lines and the face
+    // lines are each those of the collected file, in the same order.
+    let mut vertices = 0usize;
+    for line in w
+        .out
+        .lines()
+        .filter(|l| l.starts_with("v ") || l.starts_with("f "))
+    {
+        if line.starts_with("v ") {
+            vertices += 1;
+        } else {
+            for c in line.split_whitespace().skip(1) {
+                let i: usize = c.split("//").next().unwrap().parse().unwrap();
+                assert!(i <= vertices, "{line} before its vertex");
+            }
+        }
+    }
+    let pick = |text: &str, keys: &[&str]| -> Vec<String> {
+        text.lines()
+            .filter(|l| keys.iter().any(|k| l.starts_with(k)))
+            .map(String::from)
+            .collect()
+    };
+    assert_eq!(pick(&w.out, &["v ", "vn "]), pick(&whole, &["v ", "vn "]));
+    assert_eq!(pick(&w.out, &["f "]), pick(&whole, &["f "]));
+}
+
+/// The table holds the front between patches done and to come: for caps
+/// whose rings keep their patch count (EG, Catmull-Clark), deeper caps add
+/// rings behind the front, not to it. (From depth 3 on the front is whole:
+/// a ring's inner edge waiting for the next ring, beside the last ring's
+/// hole corners.)
+#[test]
+fn weld_table_does_not_grow_with_the_depth() {
+    for (name, mesh) in [
+        ("cube", samples::cube()),
+        ("rounded cube", samples::rounded_cube(3)),
+        (
+            "triangle and pentagon",
+            samples::triangle_and_pentagon_mesh(),
+        ),
+    ] {
+        let tol = weld_tolerance(&mesh);
+        let shallow = streamed(&patches(&mesh, 3), 4, tol);
+        let deep = streamed(&patches(&mesh, 8), 4, tol);
+        assert!(
+            deep.0.positions.len() > 2 * shallow.0.positions.len(),
+            "{name}"
+        );
+        assert!(
+            deep.1.peak_weld <= shallow.1.peak_weld,
+            "{name}: {} at depth 8, {} at depth 3",
+            deep.1.peak_weld,
+            shallow.1.peak_weld
+        );
+        // Output waits only within one cap's last ring.
+        assert!(deep.1.peak_waiting < deep.0.positions.len() / 4, "{name}");
+    }
+}
+
+/// A sink that counts, to check that nothing is handed over twice.
+#[derive(Default)]
+struct Count {
+    vertices: usize,
+    faces: usize,
+    max_index: u32,
+}
+
+impl MeshSink<f64> for Count {
+    fn vertex(&mut self, _: capdiv::Point3<f64>, _: capdiv::Point3<f64>) {
+        self.vertices += 1;
+    }
+    fn face(&mut self, f: capdiv_mesh::tessellate::Face, _: u32) {
+        self.faces += 1;
+        for &c in f.corners() {
+            assert!((c as usize) < self.vertices, "a face before its vertex");
+            self.max_index = self.max_index.max(c);
+        }
+    }
+}
+
+#[test]
+fn faces_follow_their_vertices() {
+    let mesh = samples::hand();
+    let ps = patches(&mesh, 3);
+    let mut tess = StreamTessellator::new(3, weld_tolerance(&mesh));
+    let mut c = Count::default();
+    for p in &ps {
+        tess.push_record(p, 0, &mut c);
+    }
+    let s = tess.finish(&mut c);
+    assert_eq!(c.vertices, s.vertices);
+    assert_eq!(c.faces, s.triangles + s.quads);
+    assert_eq!(c.max_index as usize + 1, c.vertices);
+}
