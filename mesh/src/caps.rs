@@ -23,6 +23,10 @@ pub enum Reason {
     /// A crease, corner, hole or boundary rule reaches the configuration:
     /// Catmull-Clark with OpenSubdiv's rules there.
     Feature,
+    /// An interior vertex of two faces: no cap scheme has valence 2, and
+    /// refinement keeps it; Catmull-Clark rings with the valence-2 smooth
+    /// rule converge to it.
+    ValenceTwo,
 }
 
 impl Reason {
@@ -43,6 +47,7 @@ impl Reason {
             Reason::Boundary => "irregular vertex or cap at the boundary",
             Reason::Overlap => "claimed by two caps",
             Reason::Feature => "a crease, corner, hole or boundary rule reaches it",
+            Reason::ValenceTwo => "interior vertex of valence 2",
         }
     }
 
@@ -55,6 +60,7 @@ impl Reason {
             Reason::Boundary => "boundary",
             Reason::Overlap => "overlap",
             Reason::Feature => "feature",
+            Reason::ValenceTwo => "valence-two",
         }
     }
 }

@@ -805,6 +805,10 @@ fn analyse(
             }
             continue;
         }
+        if n < 3 {
+            vertex_reason[v] = Some(Reason::ValenceTwo);
+            continue;
+        }
         match ev_config(t, v) {
             Ok(e) => {
                 let faces: Vec<u32> = e.sectors.iter().map(|&(f, _)| f).collect();

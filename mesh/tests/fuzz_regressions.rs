@@ -155,3 +155,24 @@ fn face_with_repeated_vertex_is_planned_quickly() {
         }
     }
 }
+
+/// A fuzz finding: two quads glued along all four edges (a closed,
+/// consistently oriented "pillow" whose vertices are all interior valence-2
+/// vertices), with two unused vertices. Its valence-2 vertices get
+/// Catmull-Clark rings, not a cap (the kernel's caps need valence 3 or
+/// more; a cap there was an evaluation error). Not closedness: both faces'
+/// points are the mean of the same four vertices at any positions, so the
+/// two sheets touch at their centres and the welded tessellation is
+/// rightly not a manifold there.
+#[test]
+fn two_quad_pillow_evaluates_without_a_valence_two_cap() {
+    let mesh = MeshInput::new(vec![[0.0; 3]; 6], vec![vec![0, 1, 3, 2], vec![1, 0, 2, 3]]);
+    assert!(is_closed_input(&mesh));
+    for depth in 1..=3 {
+        for cc in [false, true] {
+            // Panics (failing the test) unless planned, covered and
+            // evaluated finitely.
+            let _closedness = run(&mesh, depth, cc);
+        }
+    }
+}
