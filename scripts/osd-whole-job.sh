@@ -54,7 +54,7 @@ if [ "$callgrind" = 1 ]; then
     # Inclusive instructions of the functions matching $2 (first match).
     inclusive() {
         callgrind_annotate --inclusive=yes --threshold=100 "$1" 2>/dev/null |
-            grep -E "$2" | head -1 | awk '{ gsub(",", "", $1); print $1 }'
+            grep -E "$2" | awk 'NR == 1 { gsub(",", "", $1); print $1 }'
     }
     echo
     echo "### Instructions per input face (callgrind, whole job only)"
@@ -65,10 +65,14 @@ if [ "$callgrind" = 1 ]; then
         "its sink), sampling (OSD: FindPatch + EvaluateBasis + sums; capdiv: the sink)"\
         "per sample."
     echo
+    echo "Re-evaluation is not run under callgrind; its column adds the stages it"\
+        "repeats: points (OSD) or patches (capdiv) + samples per face × sampling."
+    echo
     echo "| mesh | precision | OSD instr/face | capdiv instr/face | OSD / capdiv |"\
         "OSD analysis / stencils / points per face, sampling per sample |"\
-        "capdiv analysis / \`Evaluator::new\` / patches per face, sampling per sample |"
-    echo "|---|---|--:|--:|--:|---|---|"
+        "capdiv analysis / \`Evaluator::new\` / patches per face, sampling per sample |"\
+        "re-evaluation OSD / capdiv per face (OSD / capdiv) |"
+    echo "|---|---|--:|--:|--:|---|---|---|"
     for mesh in torus-100x100 torus-ev-1e4 torus-features-1e4; do
         prep=$("$bin" --prepare "$mesh")
         helper=$(sed -n 's/^helper //p' <<<"$prep")
@@ -99,7 +103,9 @@ if [ "$callgrind" = 1 ]; then
                 -v ca="$ca" -v cn="${cn:-0}" -v ce="$ce" -v cs="$cs" 'BEGIN {
                 printf "| %s | %s | %.0f | %.0f | %.2f× | %.0f / %.0f / %.0f, %.0f |", \
                     m, p, o / f, c / f, o / c, oa / f, os / f, op / f, osa / n
-                printf " %.0f / %.0f / %.0f, %.0f |\n", ca / f, cn / f, (ce - cs) / f, cs / n
+                printf " %.0f / %.0f / %.0f, %.0f |", ca / f, cn / f, (ce - cs) / f, cs / n
+                ro = op / f + osa / f; rc = (ce - cs) / f + cs / f
+                printf " %.0f / %.0f (%.2f×) |\n", ro, rc, ro / rc
             }'
         done
     done
@@ -107,13 +113,31 @@ if [ "$callgrind" = 1 ]; then
     echo "### Where capdiv's whole job (torus-ev-1e4, f64) spends its instructions (callgrind, self cost)"
     echo
     callgrind_annotate --threshold=95 "$tmp/capdiv-torus-ev-1e4-f64.out" 2>/dev/null |
-        grep -E '^ *[0-9,]+ \(' | grep -v 'PROGRAM TOTALS' | head -12 |
+        grep -E '^ *[0-9,]+ \(' | grep -v 'PROGRAM TOTALS' | awk 'NR <= 12' |
         sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
     echo
     echo "Including callees (the evaluation's parts):"
     echo
     callgrind_annotate --inclusive=yes --threshold=100 "$tmp/capdiv-torus-ev-1e4-f64.out" 2>/dev/null |
-        grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv(_mesh)?::|GridSink' | head -10 |
+        grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv(_mesh)?::|GridSink' | awk 'NR <= 10' |
+        sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
+    echo
+    echo "### Where capdiv's analysis of torus-features-1e4 spends its instructions (callgrind, self cost)"
+    echo
+    valgrind --tool=callgrind --toggle-collect=capdiv_job_analyse \
+        --callgrind-out-file="$tmp/analysis.out" "$bin" --once torus-features-1e4 f64 \
+        >/dev/null 2>"$tmp/analysis.err"
+    echo "$(collected "$tmp/analysis.err" | awk '{ printf "%.0f", $1 / 10000 }') instructions per face in all;"\
+        "top functions:"
+    echo
+    callgrind_annotate --threshold=95 "$tmp/analysis.out" 2>/dev/null |
+        grep -E '^ *[0-9,]+ \(' | grep -v 'PROGRAM TOTALS' | awk 'NR <= 12' |
+        sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
+    echo
+    echo "Including callees:"
+    echo
+    callgrind_annotate --inclusive=yes --threshold=100 "$tmp/analysis.out" 2>/dev/null |
+        grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv_mesh::' | awk 'NR <= 12' |
         sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
 fi
 echo
