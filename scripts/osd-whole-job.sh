@@ -63,16 +63,19 @@ if [ "$callgrind" = 1 ]; then
         "capdiv: \`SurfacePlan::for_mesh\`), stencils (OSD: stencil tables; capdiv:"\
         "\`Evaluator::new\`), points (OSD: \`UpdateValues\`; capdiv: \`evaluate\` without"\
         "its sink), sampling (OSD: FindPatch + EvaluateBasis + sums; capdiv: the sink)"\
-        "per sample."
+        "per sample. \"OSD with PrimvarRefiner\": the refined points from"\
+        "\`PrimvarRefiner::Interpolate\` level by level and the local points from the"\
+        "patch table's stencils, instead of stencil tables."
     echo
     echo "Re-evaluation is not run under callgrind; its column adds the stages it"\
         "repeats: points (OSD) or patches (capdiv) + samples per face × sampling."
     echo
-    echo "| mesh | precision | OSD instr/face | capdiv instr/face | OSD / capdiv |"\
+    echo "| mesh | precision | OSD instr/face | OSD with PrimvarRefiner | capdiv instr/face |"\
+        "OSD / capdiv | OSD with PrimvarRefiner / capdiv |"\
         "OSD analysis / stencils / points per face, sampling per sample |"\
         "capdiv analysis / \`Evaluator::new\` / patches per face, sampling per sample |"\
         "re-evaluation OSD / capdiv per face (OSD / capdiv) |"
-    echo "|---|---|--:|--:|--:|---|---|---|"
+    echo "|---|---|--:|--:|--:|--:|--:|---|---|---|"
     for mesh in torus-100x100 torus-ev-1e4 torus-features-1e4; do
         prep=$("$bin" --prepare "$mesh")
         helper=$(sed -n 's/^helper //p' <<<"$prep")
@@ -85,7 +88,11 @@ if [ "$callgrind" = 1 ]; then
             valgrind --tool=callgrind --toggle-collect="osd_whole_job_$prec" \
                 --callgrind-out-file="$tmp/osd.out" "$helper" --whole-once "$job" "$prec" \
                 >"$tmp/osd.txt" 2>"$tmp/osd.err"
+            valgrind --tool=callgrind --toggle-collect="osd_whole_job_primvar_$prec" \
+                --callgrind-out-file="$tmp/osd-primvar.out" "$helper" --whole-once "$job" "$prec" primvar \
+                >/dev/null 2>"$tmp/osd-primvar.err"
             c=$(collected "$tmp/capdiv.err")
+            op2=$(collected "$tmp/osd-primvar.err")
             o=$(collected "$tmp/osd.err")
             n=$(sed -n 's/^covered //p' "$tmp/osd.txt")
             real=$([ "$prec" = f64 ] && echo double || echo float)
@@ -98,11 +105,11 @@ if [ "$callgrind" = 1 ]; then
             cn=$(inclusive "$cf" "Evaluator<R>::new ")
             ce=$(inclusive "$cf" "osd_whole_job::evaluate_sampled ")
             cs=$(inclusive "$cf" "GridSink<R> as capdiv_mesh::evaluate::SurfaceSink<R>>::patch ")
-            awk -v m="$mesh" -v p="$prec" -v f="$faces" -v n="$n" -v c="$c" -v o="$o" \
+            awk -v m="$mesh" -v p="$prec" -v f="$faces" -v n="$n" -v c="$c" -v o="$o" -v o2="$op2" \
                 -v oa="$oa" -v os="$os" -v op="$op" -v osa="$osa" \
                 -v ca="$ca" -v cn="${cn:-0}" -v ce="$ce" -v cs="$cs" 'BEGIN {
-                printf "| %s | %s | %.0f | %.0f | %.2f× | %.0f / %.0f / %.0f, %.0f |", \
-                    m, p, o / f, c / f, o / c, oa / f, os / f, op / f, osa / n
+                printf "| %s | %s | %.0f | %.0f | %.0f | %.2f× | %.2f× | %.0f / %.0f / %.0f, %.0f |", \
+                    m, p, o / f, o2 / f, c / f, o / c, o2 / c, oa / f, os / f, op / f, osa / n
                 printf " %.0f / %.0f / %.0f, %.0f |", ca / f, cn / f, (ce - cs) / f, cs / n
                 ro = op / f + osa / f; rc = (ce - cs) / f + cs / f
                 printf " %.0f / %.0f (%.2f×) |\n", ro, rc, ro / rc

@@ -12,9 +12,12 @@
 //                        time the whole job in f64 and in f32, print "key
 //                        value" lines; DUMP: write the f64 samples there
 //                        (native doubles, 6 per sample)
-//   osd-bench --whole-once JOB f64|f32
+//   osd-bench --whole-once JOB f64|f32 [primvar]
 //                        the whole job once, inside osd_whole_job_f64 or
-//                        osd_whole_job_f32 (callgrind's --toggle-collect)
+//                        osd_whole_job_f32 (callgrind's --toggle-collect);
+//                        with primvar, the refined points from PrimvarRefiner
+//                        instead of stencil tables, inside
+//                        osd_whole_job_primvar_f64 or _f32
 //
 // The whole job: mesh in, positions and unit normals out on a 5x5 grid of
 // (u, v) = ((2i+1)/10, (2j+1)/10) per ptex face. As OpenSubdiv's Far
@@ -516,21 +519,53 @@ extern "C" __attribute__((noinline)) void osd_whole_job_f32(Mesh const &m, Job<f
     wholeJob(m, job, s);
 }
 
-// `--whole JOB [DUMP]` and `--whole-once JOB f64|f32`.
+namespace {
+
+// The whole job with the refined points from PrimvarRefiner instead of
+// stencil tables.
+template <typename REAL>
+void wholeJobPrimvar(Mesh const &m, Job<REAL> &job) {
+    Stages s;
+    analyseIn<REAL>(m, job.r, s);
+    job.numPtex = Far::PtexIndices(*job.r.refiner).GetNumFaces();
+    primvarPoints(job, m.coords);
+    samplePoints(job);
+}
+
+}  // namespace
+
+extern "C" __attribute__((noinline)) void osd_whole_job_primvar_f64(Mesh const &m,
+                                                                    Job<double> &job) {
+    wholeJobPrimvar(m, job);
+}
+
+extern "C" __attribute__((noinline)) void osd_whole_job_primvar_f32(Mesh const &m,
+                                                                    Job<float> &job) {
+    wholeJobPrimvar(m, job);
+}
+
+// `--whole JOB [DUMP]` and `--whole-once JOB f64|f32 [primvar]`.
 int whole(int argc, char **argv) {
     bool once = std::strcmp(argv[1], "--whole-once") == 0;
     if (argc < 3) fail("usage: osd-bench --whole JOB [DUMP] | --whole-once JOB f64|f32");
     Mesh m = readJob(argv[2]);
     if (once) {
-        if (argc != 4) fail("--whole-once JOB f64|f32");
+        if (argc != 4 && argc != 5) fail("--whole-once JOB f64|f32 [primvar]");
+        bool primvar = argc == 5 && std::strcmp(argv[4], "primvar") == 0;
         size_t covered = 0;
         if (std::strcmp(argv[3], "f64") == 0) {
             Job<double> job;
-            osd_whole_job_f64(m, job);
+            if (primvar)
+                osd_whole_job_primvar_f64(m, job);
+            else
+                osd_whole_job_f64(m, job);
             for (size_t k = 0; k < job.out.size(); k += 6) covered += !std::isnan(job.out[k]);
         } else {
             Job<float> job;
-            osd_whole_job_f32(m, job);
+            if (primvar)
+                osd_whole_job_primvar_f32(m, job);
+            else
+                osd_whole_job_f32(m, job);
             for (size_t k = 0; k < job.out.size(); k += 6) covered += !std::isnan(job.out[k]);
         }
         if (g_error) fail("OpenSubdiv reported an error");
