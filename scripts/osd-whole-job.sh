@@ -146,6 +146,25 @@ if [ "$callgrind" = 1 ]; then
     callgrind_annotate --inclusive=yes --threshold=100 "$tmp/analysis.out" 2>/dev/null |
         grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv_mesh::' | awk 'NR <= 12' |
         sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
+    echo
+    echo "### Where capdiv's welded OBJ tessellation of torus-ev-1e4 spends its instructions (callgrind, self cost)"
+    echo
+    valgrind --tool=callgrind --toggle-collect=capdiv_tessellate_obj \
+        --callgrind-out-file="$tmp/tess.out" "$bin" --tessellate torus-ev-1e4 \
+        >"$tmp/tess.txt" 2>"$tmp/tess.err"
+    patches=$(sed -n 's/^patches //p' "$tmp/tess.txt")
+    collected "$tmp/tess.err" | awk -v p="$patches" \
+        '{ printf "%.0f instructions per face, %.0f per patch (grid 4); top functions:\n", $1 / 10000, $1 / p }'
+    echo
+    callgrind_annotate --threshold=95 "$tmp/tess.out" 2>/dev/null |
+        grep -E '^ *[0-9,]+ \(' | grep -v 'PROGRAM TOTALS' | awk 'NR <= 10' |
+        sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
+    echo
+    echo "Including callees:"
+    echo
+    callgrind_annotate --inclusive=yes --threshold=100 "$tmp/tess.out" 2>/dev/null |
+        grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv_mesh::|capdiv::' | awk 'NR <= 8' |
+        sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
 fi
 echo
 echo "Load average at end $(cut -d' ' -f1-3 /proc/loadavg)"

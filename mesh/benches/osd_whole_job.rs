@@ -36,7 +36,9 @@
 //! tables (`-- --only NAME,NAME` for some meshes). For instruction counts
 //! (`scripts/osd-whole-job.sh`): `-- --prepare NAME` writes the mesh's job
 //! file and prints the helper's and the job's paths, `-- --once NAME f64|f32`
-//! runs the whole job once inside `capdiv_whole_job_f64` or `_f32`.
+//! runs the whole job once inside `capdiv_whole_job_f64` or `_f32`,
+//! `-- --tessellate NAME` the welded OBJ tessellation once inside
+//! `capdiv_tessellate_obj`.
 
 #[path = "osd/common.rs"]
 mod common;
@@ -344,6 +346,14 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
     }
 }
 
+/// The welded OBJ tessellation of `patches` (grid [`TESS_GRID`], welded
+/// within `tol`), for callgrind's `--toggle-collect`: the OBJ text's length.
+#[no_mangle]
+#[inline(never)]
+fn capdiv_tessellate_obj(patches: &[TessPatch<f64>], tol: f64) -> usize {
+    write_obj(&tessellate(patches.iter().copied(), TESS_GRID, tol), &[]).len()
+}
+
 /// Median seconds of three calls of `f` (the tessellation takes seconds on
 /// the larger meshes).
 fn median_of_3(mut f: impl FnMut()) -> f64 {
@@ -640,6 +650,19 @@ fn main() {
         };
         println!("faces {}", case.mesh.faces.len());
         println!("covered {covered}");
+        return;
+    }
+    if let Some(name) = value("--tessellate") {
+        let case = cases(&|n| n == name).pop().expect("unknown mesh");
+        let plan = capdiv_job_analyse(&case.mesh);
+        let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+        let mut keep = Keep::default();
+        ev.evaluate(&plan, &case.mesh.vertices, &mut keep)
+            .expect("evaluate");
+        let bytes = capdiv_tessellate_obj(&keep.0, WELD * size(&case.mesh));
+        println!("faces {}", case.mesh.faces.len());
+        println!("patches {}", keep.0.len());
+        println!("bytes {bytes}");
         return;
     }
     if let Some(name) = value("--prepare") {
