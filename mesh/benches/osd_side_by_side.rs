@@ -21,220 +21,23 @@
 //! the analysis once inside `capdiv_analyse` (callgrind's
 //! `--toggle-collect=capdiv_analyse`).
 
+#[path = "osd/common.rs"]
+mod common;
 #[path = "../tests/osd/mod.rs"]
 mod osd;
 
-use capdiv_mesh::{samples, CapRecord, EdgeCrease, Evaluator, MeshInput, PatchRecord};
-use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink, Topology, VertexCorner};
-use std::collections::{BTreeMap, HashMap};
+use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord};
+use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink, Topology};
+use common::{feature_torus, helper, icosphere, job_file, time, DEPTH};
+use std::collections::BTreeMap;
 use std::hint::black_box;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-use std::time::{Duration, Instant};
-
-/// capdiv's cap depth and OpenSubdiv's isolation level.
-const DEPTH: u32 = 4;
 
 /// A named benchmark mesh.
 struct Case {
     name: &'static str,
     mesh: MeshInput,
-}
-
-/// Catmull-Clark's topological split (positions averaged, not smoothed):
-/// every k-gon becomes k quads, its children contiguous and in corner order.
-/// Tags follow: a crease edge's two halves keep its sharpness, a hole's
-/// children are holes, corners stay on their vertex.
-fn split(m: &MeshInput) -> MeshInput {
-    let mut vertices = m.vertices.clone();
-    let mut edge_point: HashMap<(u32, u32), u32> = HashMap::new();
-    let mut edge = |vertices: &mut Vec<[f64; 3]>, a: u32, b: u32| {
-        *edge_point.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            let (p, q) = (m.vertices[a as usize], m.vertices[b as usize]);
-            vertices.push([
-                (p[0] + q[0]) / 2.0,
-                (p[1] + q[1]) / 2.0,
-                (p[2] + q[2]) / 2.0,
-            ]);
-            (vertices.len() - 1) as u32
-        })
-    };
-    let mut faces = Vec::with_capacity(4 * m.faces.len());
-    let mut children = Vec::with_capacity(m.faces.len());
-    for f in &m.faces {
-        let k = f.len();
-        let mut c = [0.0; 3];
-        for &v in f {
-            for (c, x) in c.iter_mut().zip(m.vertices[v as usize]) {
-                *c += x / k as f64;
-            }
-        }
-        vertices.push(c);
-        let centre = (vertices.len() - 1) as u32;
-        let mids: Vec<u32> = (0..k)
-            .map(|i| edge(&mut vertices, f[i], f[(i + 1) % k]))
-            .collect();
-        children.push(faces.len() as u32..(faces.len() + k) as u32);
-        for i in 0..k {
-            faces.push(vec![f[i], mids[i], centre, mids[(i + k - 1) % k]]);
-        }
-    }
-    let mut out = MeshInput::new(vertices, faces);
-    out.tags = m.tags.clone();
-    out.tags.creases = m
-        .tags
-        .creases
-        .iter()
-        .flat_map(|c| {
-            let [a, b] = c.vertices;
-            let e = edge(&mut out.vertices, a, b);
-            [[a, e], [e, b]].map(|vertices| EdgeCrease {
-                vertices,
-                sharpness: c.sharpness,
-            })
-        })
-        .collect();
-    out.tags.holes = m
-        .tags
-        .holes
-        .iter()
-        .flat_map(|&h| children[h as usize].clone())
-        .collect();
-    out
-}
-
-/// A torus of `16·base²` quads with features, from `samples::torus(base,
-/// base)` split twice ([`split`]):
-/// - isolated extraordinary points: before the splits, the edge shared by
-///   faces (i, j) and (i+1, j) for i ≡ 0 (mod 4), j even, turned by one
-///   step in their hexagon (two valence-3 and two valence-5 points), so
-///   after the splits they are 4 edges apart;
-/// - creases along whole grid lines: sharpness 2.5 around the tube at
-///   columns ≡ 3 (mod 8) (no turned edge there), 10 around the major circle
-///   at rows ≡ 1 (mod 8) (through turned hexagons);
-/// - corners at the first eight crossings of those lines (sharpness 10 and
-///   2.5, alternating);
-/// - holes: the 16 children of base faces (i, j) with i ≡ 5, j ≡ 12 (mod 16).
-fn feature_torus(base: usize) -> MeshInput {
-    let n = base;
-    let mut m = samples::torus(n, n);
-    let at = |i: usize, j: usize| ((i % n) * n + j % n) as u32;
-    let face = |i: usize, j: usize| (i % n) * n + j % n;
-    for i in (0..n.saturating_sub(3)).step_by(4) {
-        for j in (0..n - 1).step_by(2) {
-            let p = [
-                at(i, j),
-                at(i + 1, j),
-                at(i + 2, j),
-                at(i + 2, j + 1),
-                at(i + 1, j + 1),
-                at(i, j + 1),
-            ];
-            m.faces[face(i, j)] = vec![p[0], p[1], p[2], p[3]];
-            m.faces[face(i + 1, j)] = vec![p[0], p[3], p[4], p[5]];
-        }
-    }
-    let columns: Vec<usize> = (3..n).step_by(8).collect();
-    let rows: Vec<usize> = (1..n).step_by(8).collect();
-    for &c in &columns {
-        for j in 0..n {
-            m.tags.creases.push(EdgeCrease {
-                vertices: [at(c, j), at(c, j + 1)],
-                sharpness: 2.5,
-            });
-        }
-    }
-    for &r in &rows {
-        for i in 0..n {
-            m.tags.creases.push(EdgeCrease {
-                vertices: [at(i, r), at(i + 1, r)],
-                sharpness: 10.0,
-            });
-        }
-    }
-    let crossings = columns
-        .iter()
-        .flat_map(|&c| rows.iter().map(move |&r| (c, r)));
-    for (k, (c, r)) in crossings.take(8).enumerate() {
-        m.tags.corners.push(VertexCorner {
-            vertex: at(c, r),
-            sharpness: if k % 2 == 0 { 10.0 } else { 2.5 },
-        });
-    }
-    for i in (5..n).step_by(16) {
-        for j in (12..n).step_by(16) {
-            m.tags.holes.push(face(i, j) as u32);
-        }
-    }
-    split(&split(&m))
-}
-
-/// The unit icosahedron's triangles split `levels` times into four (edge
-/// midpoints pushed to the sphere): `20·4^levels` triangles, twelve
-/// valence-5 vertices, all others valence 6.
-fn icosphere(levels: u32) -> MeshInput {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut vertices: Vec<[f64; 3]> = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .to_vec();
-    let mut faces: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    let unit = |p: [f64; 3]| {
-        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-        [p[0] / r, p[1] / r, p[2] / r]
-    };
-    for p in &mut vertices {
-        *p = unit(*p);
-    }
-    for _ in 0..levels {
-        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut next = Vec::with_capacity(4 * faces.len());
-        for [a, b, c] in faces {
-            let mut m = |x: u32, y: u32| {
-                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
-                    let (p, q) = (vertices[x as usize], vertices[y as usize]);
-                    vertices.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
-                    (vertices.len() - 1) as u32
-                })
-            };
-            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-        }
-        faces = next;
-    }
-    MeshInput::new(vertices, faces.iter().map(|f| f.to_vec()).collect())
 }
 
 /// Builds one benchmark mesh.
@@ -279,32 +82,6 @@ fn capdiv_analyse(mesh: &MeshInput) -> SurfacePlan<'static> {
     SurfacePlan::for_mesh(mesh, options()).expect("capdiv analyses the mesh")
 }
 
-/// Median seconds per call of `f`, timed as `osd_bench.cpp` times.
-fn time(mut f: impl FnMut()) -> (f64, usize) {
-    let batch_of = |f: &mut dyn FnMut(), n: usize| {
-        let t = Instant::now();
-        for _ in 0..n {
-            f();
-        }
-        t.elapsed()
-    };
-    let mut batch = 1;
-    let mut took;
-    loop {
-        took = batch_of(&mut f, batch);
-        if took >= Duration::from_millis(2) || batch >= 1 << 20 {
-            break;
-        }
-        batch *= 2;
-    }
-    let samples = ((2.0 / took.as_secs_f64()) as usize).clamp(5, 21);
-    let mut per: Vec<f64> = (0..samples)
-        .map(|_| batch_of(&mut f, batch).as_secs_f64() / batch as f64)
-        .collect();
-    per.sort_by(f64::total_cmp);
-    (per[samples / 2], samples)
-}
-
 /// Counts the patches of one evaluation by level.
 #[derive(Default)]
 struct Count {
@@ -320,49 +97,6 @@ impl SurfaceSink<f64> for Count {
     fn cap(&mut self, c: &CapRecord<f64>) {
         self.acc += c.limit.0[0];
     }
-}
-
-/// The OpenSubdiv helper, built into the bench's target directory when its
-/// source is newer.
-fn helper() -> PathBuf {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/osd/osd_bench.cpp");
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let bin = dir.join("osd-bench");
-    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    if modified(&bin).is_some_and(|b| modified(&src).is_some_and(|s| b >= s)) {
-        return bin;
-    }
-    std::fs::create_dir_all(dir).expect("create CARGO_TARGET_TMPDIR");
-    let tmp = dir.join(format!("osd-bench.{}.tmp", std::process::id()));
-    let out = Command::new("g++")
-        .args(["-O2", "-std=c++14"])
-        .arg(&src)
-        .arg("-o")
-        .arg(&tmp)
-        .arg("-losdCPU")
-        .output()
-        .expect("run g++ (install g++ and libosd-dev)");
-    assert!(
-        out.status.success(),
-        "building osd_bench.cpp failed (install libosd-dev):\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    std::fs::rename(&tmp, &bin).expect("rename the helper");
-    bin
-}
-
-/// Writes the mesh's job file (isolation [`DEPTH`]) and returns its path.
-fn job_file(case: &Case) -> PathBuf {
-    let mut job = osd::Job::new(&case.mesh);
-    job.isolation = DEPTH;
-    let name: String = case
-        .name
-        .chars()
-        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
-        .collect();
-    let path = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}.osdjob"));
-    std::fs::write(&path, osd::job_text(&job)).expect("write the job file");
-    path
 }
 
 /// The helper's `key value` lines.
@@ -419,7 +153,7 @@ fn measure(case: &Case, helper: &Path) -> Row {
     ev.evaluate(&plan, &case.mesh.vertices, &mut count)
         .expect("evaluate");
     black_box(count.acc);
-    let osd = run_helper(helper, &job_file(case));
+    let osd = run_helper(helper, &job_file(case.name, &case.mesh));
     Row {
         name: case.name,
         faces,
@@ -512,7 +246,7 @@ fn main() {
     if let Some(name) = value("--prepare") {
         let case = cases(&|n| n == name).pop().expect("unknown mesh");
         println!("helper {}", helper().display());
-        println!("job {}", job_file(&case).display());
+        println!("job {}", job_file(case.name, &case.mesh).display());
         println!("faces {}", case.mesh.faces.len());
         return;
     }
