@@ -840,6 +840,7 @@ fn analyse(t: &Topology, options: &PlanOptions<'_>, clean: Option<&[bool]>) -> P
 /// [`crate::adaptive::level::Level::new`]).
 fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
     check_sizes_and_positions(mesh)?;
+    mesh.check_uvs()?;
     let nv = mesh.vertices.len();
     let nf = mesh.faces.len();
     for (face, f) in mesh.faces.iter().enumerate() {
