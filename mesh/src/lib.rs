@@ -64,6 +64,7 @@ pub mod caps;
 pub mod chart;
 pub mod error;
 pub mod evaluate;
+pub mod facevarying;
 pub mod grid;
 pub mod input;
 pub mod obj;
@@ -78,6 +79,7 @@ pub mod topology;
 
 pub use error::MeshError;
 pub use evaluate::{CapRecord, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink};
+pub use facevarying::{FaceVarying, PatchUv};
 pub use input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
     VertexCorner,

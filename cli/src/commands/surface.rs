@@ -45,8 +45,8 @@ use capdiv_mesh::tessellate::{
     TessPatch, Tessellation,
 };
 use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
-    Topology,
+    CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
+    SurfacePlan, SurfaceSink, Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -186,7 +186,12 @@ fn produce<R: Scalar>(
     Ok(match format {
         SurfaceFormat::Json => {
             let out = SurfaceJson {
-                patches: surface.patches.iter().map(PatchJson::new).collect(),
+                patches: surface
+                    .patches
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| PatchJson::new(p).with_uv(surface.uvs.get(k)))
+                    .collect(),
                 caps: surface.caps.iter().map(CapJson::new).collect(),
                 summary: &surface.summary,
             };
@@ -316,6 +321,9 @@ pub struct Surface<R> {
     pub patches: Vec<PatchRecord<R>>,
     /// Caps in the evaluator's order (polar first, then EG / Catmull-Clark).
     pub caps: Vec<CapRecord<R>>,
+    /// Per patch, its texture coordinates ([`FaceVarying`]) when the input
+    /// has UVs; empty otherwise.
+    pub uvs: Vec<PatchUv>,
     /// Counts, reasons, times.
     pub summary: Summary,
 }
@@ -509,9 +517,14 @@ pub fn build_scheme<R: Scalar>(
             evaluation: evaluation.as_secs_f64() * 1e3,
         },
     };
+    let uvs = match FaceVarying::new(mesh, &plan).map_err(mesh_err)? {
+        Some(fv) => sink.patches.iter().map(|p| fv.patch(p)).collect(),
+        None => Vec::new(),
+    };
     Ok(Surface {
         patches: sink.patches,
         caps: sink.caps,
+        uvs,
         summary,
     })
 }
@@ -551,6 +564,10 @@ pub struct PatchJson<R> {
     pub domain: [f64; 4],
     /// `(d+1)²` points, `points[(d+1)·j + i]` = `b_ij`, `i` along `u`.
     pub points: Vec<[R; 3]>,
+    /// With input UVs: the texture coordinates at the patch's corners
+    /// `(u, v)` = (0,0), (1,0), (1,1), (0,1), bilinear in between.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uv: Option<[[f64; 2]; 4]>,
 }
 
 impl<R: Scalar> PatchJson<R> {
@@ -574,7 +591,14 @@ impl<R: Scalar> PatchJson<R> {
             corner: p.corner,
             domain: p.domain,
             points,
+            uv: None,
         }
+    }
+
+    /// The patch with its texture coordinates, if given.
+    pub fn with_uv(mut self, uv: Option<&PatchUv>) -> Self {
+        self.uv = uv.map(|u| u.corners);
+        self
     }
 }
 
@@ -877,12 +901,13 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         s: &Surface<S>,
         tag: fn(&PatchRecord<S>) -> u32,
     ) -> impl Iterator<Item = TessPatch<S>> + '_ {
-        s.patches.iter().map(move |p| TessPatch {
+        s.patches.iter().enumerate().map(move |(k, p)| TessPatch {
             geometry: p.geometry,
             finer: p.finer,
             hole: p.hole,
             hole_point: p.hole_point,
             tag: tag(p),
+            uv: s.uvs.get(k).copied(),
         })
     }
     let t = match guide {
@@ -913,10 +938,28 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         triangles,
         quads: t.faces.len() - triangles,
         degenerate_dropped: t.degenerate_dropped,
-        closed: is_closed_and_oriented(&t.faces),
+        closed: closed_through_seams(&t),
         time_ms: start.elapsed().as_secs_f64() * 1e3,
     };
     Tess { mesh: t, info }
+}
+
+/// [`is_closed_and_oriented`] of the tessellation, UV seams joined (a seam
+/// splits vertices for the texture, not the surface).
+fn closed_through_seams<R>(t: &Tessellation<R>) -> Result<(), BadEdge> {
+    if t.seam_origin.is_empty() {
+        return is_closed_and_oriented(&t.faces);
+    }
+    let origin = |i: &u32| t.seam_origin.get(*i as usize).copied().unwrap_or(*i);
+    let faces: Vec<Face> = t
+        .faces
+        .iter()
+        .map(|f| match f {
+            Face::Tri(c) => Face::Tri([origin(&c[0]), origin(&c[1]), origin(&c[2])]),
+            Face::Quad(c) => Face::Quad(c.each_ref().map(origin)),
+        })
+        .collect();
+    is_closed_and_oriented(&faces)
 }
 
 /// The closedness check in words.
