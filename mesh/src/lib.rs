@@ -85,5 +85,5 @@ pub use input::{
     VertexCorner,
 };
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
-pub use stencil::StencilTable;
+pub use stencil::{Primvar, StencilTable};
 pub use topology::Topology;
