@@ -33,6 +33,14 @@
 //!  "crease_method": "normal" | "chaikin", "triangles": "catmark" | "smooth"}
 //! ```
 //!
+//! Optional texture coordinates, one `[u, v]` per face corner (face by face,
+//! corners in the order of `faces`; OBJ's `vt`), interpolated linearly within
+//! each face (OpenSubdiv's `FVAR_LINEAR_ALL`):
+//!
+//! ```json
+//! {"uvs": [[[u, v], [u, v], [u, v], [u, v]], ...]}
+//! ```
+//!
 //! Unknown fields are rejected.
 
 use crate::error::CliError;
@@ -57,9 +65,9 @@ pub enum Input {
     Mesh(MeshJson),
 }
 
-/// `{"kind": "mesh", "vertices", "faces"}` and the optional subdivision
+/// `{"kind": "mesh", "vertices", "faces"}`, the optional subdivision
 /// tags `creases`, `corners`, `holes`, `boundary`, `crease_method`,
-/// `triangles`.
+/// `triangles`, and the optional per-corner texture coordinates `uvs`.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshJson {
@@ -85,6 +93,9 @@ pub struct MeshJson {
     /// The edge rule next to triangles (default `catmark`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub triangles: Option<TrianglesJson>,
+    /// Texture coordinates: per face, one `[u, v]` per corner (empty: none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub uvs: Vec<Vec<[f64; 2]>>,
     /// Tags an OBJ file had that are not applied (name, line); not part of
     /// the JSON, carried so that a mesh read from OBJ keeps them.
     #[serde(skip)]
@@ -209,11 +220,25 @@ impl MeshJson {
             None | Some(TrianglesJson::Catmark) => capdiv_mesh::TriangleSubdivision::Catmark,
             Some(TrianglesJson::Smooth) => capdiv_mesh::TriangleSubdivision::Smooth,
         };
-        Ok(capdiv_mesh::MeshInput {
+        // Per-corner UVs: the pool is the corners in order.
+        let mut uvs = Vec::new();
+        let mut uv_faces = Vec::new();
+        if !self.uvs.is_empty() {
+            uvs.reserve(self.uvs.iter().map(Vec::len).sum());
+            for list in &self.uvs {
+                uv_faces.push((uvs.len() as u32..(uvs.len() + list.len()) as u32).collect());
+                uvs.extend_from_slice(list);
+            }
+        }
+        let mesh = capdiv_mesh::MeshInput {
             vertices: self.vertices.clone(),
             faces,
             tags,
-        })
+            uvs,
+            uv_faces,
+        };
+        mesh.check_uvs().map_err(|e| CliError::mesh(source, e))?;
+        Ok(mesh)
     }
 
     /// The JSON form of a mesh (tags at their defaults are left out).
@@ -250,6 +275,15 @@ impl MeshJson {
                 capdiv_mesh::TriangleSubdivision::Catmark => None,
                 capdiv_mesh::TriangleSubdivision::Smooth => Some(TrianglesJson::Smooth),
             },
+            uvs: mesh
+                .uv_faces
+                .iter()
+                .map(|f| {
+                    f.iter()
+                        .map(|&t| mesh.uvs.get(t as usize).copied().unwrap_or([0.0; 2]))
+                        .collect()
+                })
+                .collect(),
             ignored: t.ignored.clone(),
         }
     }

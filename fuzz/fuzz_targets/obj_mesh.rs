@@ -126,6 +126,7 @@ fn evaluate<R: FuzzReal>(
             hole: p.hole,
             hole_point: p.hole_point,
             tag: p.level,
+            uv: None,
         }),
         grid,
         // Relative to the mesh's size, as the CLI welds (an absolute

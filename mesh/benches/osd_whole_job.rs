@@ -186,6 +186,7 @@ impl SurfaceSink<f64> for Keep {
             hole: p.hole,
             hole_point: p.hole_point,
             tag: p.level,
+            uv: None,
         });
     }
     fn cap(&mut self, _: &CapRecord<f64>) {}

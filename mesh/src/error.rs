@@ -21,6 +21,17 @@ pub trait Names {
             Err(_) => format!("vertex {index}"),
         }
     }
+    /// Texture coordinate `t` (0-based index into the UV pool).
+    fn uv(&self, t: usize) -> String {
+        format!("texture coordinate {t}")
+    }
+    /// A texture coordinate index that is out of range, possibly negative.
+    fn missing_uv(&self, index: i64) -> String {
+        match usize::try_from(index) {
+            Ok(t) => self.uv(t),
+            Err(_) => format!("texture coordinate {index}"),
+        }
+    }
 }
 
 /// 0-based indices, as in [`crate::MeshInput`] and the JSON mesh schema.
@@ -108,6 +119,32 @@ pub enum MeshError {
         /// How many there are.
         count: usize,
     },
+    /// A face's list of UV indices is not as long as its list of vertices
+    /// (or a face has no UV list while the mesh has UVs).
+    UvCorners {
+        /// The face.
+        face: usize,
+        /// Its number of UV indices.
+        uv_corners: usize,
+        /// Its number of vertices.
+        vertices: usize,
+    },
+    /// A face refers to a UV that does not exist.
+    UvOutOfRange {
+        /// The face.
+        face: usize,
+        /// The UV index as written (0-based; OBJ indices are converted first).
+        index: i64,
+        /// Number of UVs.
+        uvs: usize,
+    },
+    /// A UV used by a face is NaN or infinite.
+    NonFiniteUv {
+        /// The face.
+        face: usize,
+        /// The UV (0-based index into the pool).
+        uv: usize,
+    },
     /// An allocation of the analysis could not be made.
     OutOfMemory {
         /// The size asked for.
@@ -173,6 +210,22 @@ impl MeshError {
                 format!("a tag names {what} {index}, but the mesh has {count} {what}s (0-based)")
             }
             MeshError::OutOfMemory { bytes } => crate::mem::OutOfMemory { bytes: *bytes }.message(),
+            MeshError::UvCorners {
+                face,
+                uv_corners,
+                vertices,
+            } => format!(
+                "{} has {uv_corners} texture coordinates for {vertices} vertices",
+                f(*face)
+            ),
+            MeshError::UvOutOfRange { face, index, uvs } => format!(
+                "{} refers to {}, the mesh has {uvs} texture coordinates",
+                f(*face),
+                names.missing_uv(*index)
+            ),
+            MeshError::NonFiniteUv { face, uv } => {
+                format!("{} uses {}, which is not finite", f(*face), names.uv(*uv))
+            }
         }
     }
 }

@@ -1,12 +1,17 @@
 //! `MeshInput`: a polygon mesh as the user gives it — vertex positions, faces
 //! as lists of 0-based vertex indices (counter-clockwise about the outward
-//! normal), and OpenSubdiv's subdivision tags ([`SubdivTags`]).
+//! normal), OpenSubdiv's subdivision tags ([`SubdivTags`]) and, optionally,
+//! face-varying texture coordinates (UVs: a pool of `(u, v)` pairs and, per
+//! face corner, an index into it, as OBJ's `vt` lines and `f v/vt` corners
+//! give them; interpolated by [`crate::facevarying`]).
 
+use crate::error::MeshError;
 use alloc::string::String;
 use alloc::vec::Vec;
 
-/// A polygon mesh: positions, faces (0-based indices, any polygon size) and
-/// tags. Nothing is checked here; the analysis validates.
+/// A polygon mesh: positions, faces (0-based indices, any polygon size),
+/// tags and optional face-varying UVs. Nothing is checked here; the analysis
+/// validates ([`MeshInput::check_uvs`] for the UVs).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct MeshInput {
     /// Vertex positions.
@@ -15,6 +20,12 @@ pub struct MeshInput {
     pub faces: Vec<Vec<u32>>,
     /// Creases, corners, holes and the boundary rule (none by default).
     pub tags: SubdivTags,
+    /// Texture coordinates `(u, v)`, indexed by [`MeshInput::uv_faces`].
+    pub uvs: Vec<[f64; 2]>,
+    /// Per face, per corner (in the order of [`MeshInput::faces`]): an index
+    /// into [`MeshInput::uvs`]. Empty: the mesh has no UVs. Two faces meeting
+    /// at a vertex may give it different UVs (a seam).
+    pub uv_faces: Vec<Vec<u32>>,
 }
 
 impl MeshInput {
@@ -24,7 +35,71 @@ impl MeshInput {
             vertices,
             faces,
             tags: SubdivTags::default(),
+            uvs: Vec::new(),
+            uv_faces: Vec::new(),
         }
+    }
+
+    /// The mesh with face-varying UVs: the pool `uvs` and, per face corner,
+    /// an index into it (`uv_faces[f][k]` for corner `k` of face `f`).
+    pub fn with_uvs(mut self, uvs: Vec<[f64; 2]>, uv_faces: Vec<Vec<u32>>) -> Self {
+        self.uvs = uvs;
+        self.uv_faces = uv_faces;
+        self
+    }
+
+    /// Whether the mesh carries UVs ([`MeshInput::uv_faces`] is not empty).
+    pub fn has_uvs(&self) -> bool {
+        !self.uv_faces.is_empty()
+    }
+
+    /// Checks the UVs, if any: one list of UV indices per face, as long as
+    /// the face ([`MeshError::UvCorners`]), every index in the pool
+    /// ([`MeshError::UvOutOfRange`]), every used UV finite
+    /// ([`MeshError::NonFiniteUv`]). The first offending face is named.
+    pub fn check_uvs(&self) -> Result<(), MeshError> {
+        if !self.has_uvs() {
+            return Ok(());
+        }
+        for (face, f) in self.faces.iter().enumerate() {
+            let corners = self.uv_faces.get(face).map_or(0, Vec::len);
+            if corners != f.len() {
+                return Err(MeshError::UvCorners {
+                    face,
+                    uv_corners: corners,
+                    vertices: f.len(),
+                });
+            }
+        }
+        if self.uv_faces.len() > self.faces.len() {
+            let face = self.faces.len();
+            return Err(MeshError::UvCorners {
+                face,
+                uv_corners: self.uv_faces[face].len(),
+                vertices: 0,
+            });
+        }
+        for (face, f) in self.uv_faces.iter().enumerate() {
+            for &index in f {
+                match self.uvs.get(index as usize) {
+                    None => {
+                        return Err(MeshError::UvOutOfRange {
+                            face,
+                            index: i64::from(index),
+                            uvs: self.uvs.len(),
+                        })
+                    }
+                    Some(uv) if !uv.iter().all(|c| c.is_finite()) => {
+                        return Err(MeshError::NonFiniteUv {
+                            face,
+                            uv: index as usize,
+                        })
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+        Ok(())
     }
 }
 

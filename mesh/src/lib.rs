@@ -64,6 +64,7 @@ pub mod caps;
 pub mod chart;
 pub mod error;
 pub mod evaluate;
+pub mod facevarying;
 pub mod grid;
 mod hole;
 pub mod input;
@@ -82,11 +83,12 @@ pub mod topology;
 
 pub use error::MeshError;
 pub use evaluate::{CapRecord, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink};
+pub use facevarying::{FaceVarying, PatchUv};
 pub use input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,
     VertexCorner,
 };
 pub use mem::OutOfMemory;
 pub use plan::{PlanOptions, Scheme, SurfacePlan};
-pub use stencil::StencilTable;
+pub use stencil::{Primvar, StencilTable};
 pub use topology::Topology;

@@ -3,13 +3,20 @@
 //!
 //! Read: `v x y z [w …]` (only `x y z` kept; further numbers — a `w`, or the
 //! `r g b` some tools append — must be numbers and are ignored),
-//! `f a b c …` with corners written `i`, `i/t`, `i//n` or `i/t/n`, 1-based or
-//! negative (relative to the vertices read so far, `-1` being the last), any
-//! polygon size, `o NAME` (the object the following faces belong to, kept
-//! by [`parse_obj_objects`] only), and tag lines (below). Lines may end in
+//! `vt u [v [w]]` (texture coordinates: `v` is 0 when missing, `w` is
+//! ignored), `f a b c …` with corners written `i`, `i/t`, `i//n` or `i/t/n`,
+//! 1-based or negative (relative to the vertices — for `t`, the texture
+//! coordinates — read so far, `-1` being the last), any polygon size,
+//! `o NAME` (the object the following faces belong to, kept by
+//! [`parse_obj_objects`] only), and tag lines (below). Lines may end in
 //! `\r\n`; `#` starts a comment; a line ending in `\` continues on the next
-//! one. Every other statement (`vt`, `vn`, `vp`, `g`, `s`, `usemtl`,
-//! `mtllib`, `l`, `p`, …) is ignored.
+//! one. Every other statement (`vn`, `vp`, `g`, `s`, `usemtl`, `mtllib`, `l`,
+//! `p`, …) is ignored, and so are normal indices `n`.
+//!
+//! Texture indices `t` become the mesh's face-varying UVs
+//! ([`MeshInput::uv_faces`]): either every corner of every face has one or
+//! none does; a face that breaks the rule is a [`MeshError::Parse`] naming
+//! its line. Out-of-range texture indices are [`MeshError::UvOutOfRange`].
 //!
 //! Tags are OpenSubdiv's shape-file lines `t NAME nint/nfloat/nstring`
 //! followed by that many integers, then numbers, then strings, as its
@@ -103,6 +110,9 @@ pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), Mesh
         mut tags,
         pending,
         objects: starts,
+        uvs,
+        uv_corners,
+        ..
     } = reader;
     let mut objects = Vec::new();
     if !starts.is_empty() {
@@ -140,6 +150,27 @@ pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), Mesh
         faces.push(list);
         start = end;
     }
+    let mut uv_faces: Vec<Vec<u32>> = Vec::new();
+    if !uv_corners.is_empty() {
+        let nt = uvs.len();
+        uv_faces.reserve(face_ends.len());
+        let mut start = 0usize;
+        for (face, &end) in face_ends.iter().enumerate() {
+            let mut list = Vec::with_capacity(end - start);
+            for &index in &uv_corners[start..end] {
+                if index < 0 || index as u64 >= nt as u64 || index > u32::MAX as i64 {
+                    return Err(MeshError::UvOutOfRange {
+                        face,
+                        index,
+                        uvs: nt,
+                    });
+                }
+                list.push(index as u32);
+            }
+            uv_faces.push(list);
+            start = end;
+        }
+    }
 
     // Tag indices, in line order, now that every vertex and face is known.
     let check = TagCheck::new(nv, &faces);
@@ -176,6 +207,8 @@ pub fn parse_obj_objects(text: &str) -> Result<(MeshInput, Vec<ObjObject>), Mesh
             vertices,
             faces,
             tags,
+            uvs,
+            uv_faces,
         },
         objects,
     ))
@@ -234,6 +267,8 @@ pub struct ObjLines {
     pub vertices: Vec<usize>,
     /// Line of face `i` (0-based `i`, faces in `f` order).
     pub faces: Vec<usize>,
+    /// Line of texture coordinate `i` (0-based `i`, `vt` order).
+    pub uvs: Vec<usize>,
 }
 
 impl ObjLines {
@@ -245,6 +280,7 @@ impl ObjLines {
             match line.split_whitespace().next() {
                 Some("v") => lines.vertices.push(line_no),
                 Some("f") => lines.faces.push(line_no),
+                Some("vt") => lines.uvs.push(line_no),
                 _ => {}
             }
             Ok(())
@@ -273,6 +309,18 @@ impl Names for ObjLines {
             None => format!("face {}", f + 1),
         }
     }
+    fn uv(&self, t: usize) -> String {
+        match self.uvs.get(t) {
+            Some(line) => format!("texture coordinate {} (line {line})", t + 1),
+            None => format!("texture coordinate {}", t + 1),
+        }
+    }
+    fn missing_uv(&self, index: i64) -> String {
+        match usize::try_from(index) {
+            Ok(t) => format!("texture coordinate {}", t as u64 + 1),
+            Err(_) => String::from("a texture coordinate before the first one"),
+        }
+    }
 }
 
 /// What has been read so far.
@@ -288,6 +336,13 @@ struct Reader {
     pending: Vec<PendingTag>,
     /// `o` statements: name and the number of faces read before it.
     objects: Vec<(String, usize)>,
+    /// `vt` statements: `(u, v)`.
+    uvs: Vec<[f64; 2]>,
+    /// Resolved 0-based texture indices, one per corner once the first face
+    /// had them (possibly out of range; checked at the end).
+    uv_corners: Vec<i64>,
+    /// Whether the faces carry texture indices (decided by the first face).
+    faces_have_uvs: Option<bool>,
 }
 
 /// A `crease`, `corner` or `hole` tag whose indices are checked at the end.
@@ -335,16 +390,54 @@ impl Reader {
                 }
                 self.vertices.push(p);
             }
+            "vt" => {
+                let mut t = [0.0f64; 2];
+                let mut count = 0usize;
+                for token in tokens {
+                    let value: f64 = token.parse().map_err(|_| {
+                        error(format!(
+                            "texture coordinate: `{}` is not a number",
+                            clip(token)
+                        ))
+                    })?;
+                    if count < 2 {
+                        t[count] = value;
+                    }
+                    count += 1;
+                }
+                if count == 0 || count > 3 {
+                    return Err(error(format!(
+                        "texture coordinate: needs 1 to 3 numbers (u [v [w]]), found {count}"
+                    )));
+                }
+                if !t.iter().all(|c| c.is_finite()) {
+                    return Err(error(String::from(
+                        "texture coordinate: not a finite number",
+                    )));
+                }
+                self.uvs.push(t);
+            }
             "f" => {
                 let nv = self.vertices.len() as i64;
+                let nt = self.uvs.len() as i64;
+                let start = self.corners.len();
+                let mut with_uv = 0usize;
+                let resolve = |index: i64, count: i64, what: &str| match index {
+                    0 => Err(error(format!(
+                        "face: {what} index 0 (OBJ indices start at 1)"
+                    ))),
+                    i if i > 0 => Ok(i - 1),
+                    i => Ok(count.saturating_add(i)),
+                };
                 for token in tokens {
                     let mut parts = token.split('/');
                     let first = parts.next().unwrap_or("");
                     let index = parse_index(first).ok_or_else(|| {
                         error(format!("face: `{}` is not a vertex index", clip(token)))
                     })?;
-                    // Texture and normal indices are ignored but must be indices.
+                    // Normal indices are ignored but must be indices.
                     let mut extra = 0;
+                    let mut texture = None;
                     for part in parts {
                         extra += 1;
                         if extra > 2 || (!part.is_empty() && parse_index(part).is_none()) {
@@ -353,17 +446,41 @@ impl Reader {
                                 clip(token)
                             )));
                         }
-                    }
-                    let resolved = match index {
-                        0 => {
-                            return Err(error(String::from(
-                                "face: index 0 (OBJ indices start at 1)",
-                            )))
+                        if extra == 1 && !part.is_empty() {
+                            texture = parse_index(part);
                         }
-                        i if i > 0 => i - 1,
-                        i => nv.saturating_add(i),
+                    }
+                    let index = if index == 0 {
+                        // Kept as the vertex message it always was.
+                        return Err(error(String::from(
+                            "face: index 0 (OBJ indices start at 1)",
+                        )));
+                    } else {
+                        resolve(index, nv, "vertex")?
                     };
-                    self.corners.push(resolved);
+                    self.corners.push(index);
+                    if let Some(t) = texture {
+                        with_uv += 1;
+                        self.uv_corners.push(resolve(t, nt, "texture")?);
+                    }
+                }
+                let corners = self.corners.len() - start;
+                if with_uv != 0 && with_uv != corners {
+                    return Err(error(String::from(
+                        "face: some corners have a texture index (v/vt) and some do not",
+                    )));
+                }
+                let has = with_uv != 0;
+                match self.faces_have_uvs {
+                    None => self.faces_have_uvs = Some(has),
+                    Some(earlier) if earlier != has => {
+                        return Err(error(String::from(if has {
+                            "face: has texture indices (v/vt) but earlier faces have none"
+                        } else {
+                            "face: has no texture indices (v/vt) but earlier faces have them"
+                        })));
+                    }
+                    Some(_) => {}
                 }
                 self.face_ends.push(self.corners.len());
             }
@@ -638,9 +755,9 @@ mod tests {
                     v 0 0 0\nv 1 0 0 1.0\nv 1 1 0\nv 0 1 0\n\
                     vt 0 0\nvn 0 0 1\ng group\ns off\nusemtl m\n\
                     f 1 2 3 4\n\
-                    f 1/1 3/1 4/1\n\
+                    f 1 3 4\n\
                     f 1//1 2//1 3//1\n\
-                    f 2/1/1 3/1/1 4/1/1\n\
+                    f 2 3 4\n\
                     l 1 2\np 3\n";
         let m = parse_obj(text).unwrap();
         assert_eq!(m.vertices.len(), 4);
@@ -657,8 +774,85 @@ mod tests {
     }
 
     #[test]
+    fn texture_indices_become_face_varying_uvs() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+                    vt 0 0\nvt 1 0 0\nvt 1 1\nvt 0.5\nvn 0 0 1\n\
+                    f 1/1 2/2 3/3 4/4\n\
+                    f 1/1/1 3/3/1 4/-1/1\n";
+        let m = parse_obj(text).unwrap();
+        assert!(m.has_uvs());
+        assert_eq!(m.uvs, vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.5, 0.0]]);
+        assert_eq!(m.uv_faces, vec![vec![0, 1, 2, 3], vec![0, 2, 3]]);
+        // Without texture indices, no UVs even if `vt` lines are present.
+        let plain = parse_obj("vt 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert!(!plain.has_uvs() && plain.uv_faces.is_empty());
+    }
+
+    #[test]
+    fn mixing_faces_with_and_without_texture_indices_names_the_line() {
+        let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n";
+        for (faces, line, what) in [
+            ("f 1/1 2/1 3/1\nf 1 2 3\n", 6, "has no texture indices"),
+            ("f 1 2 3\nf 1/1 2/1 3/1\n", 6, "has texture indices"),
+            ("f 1/1 2 3/1\n", 5, "some corners"),
+            ("f 1/0 2/1 3/1\n", 5, "texture index 0"),
+            ("f 1/x 2/1 3/1\n", 5, "is not a corner"),
+        ] {
+            let e = parse_err(&format!("{head}{faces}"));
+            let MeshError::Parse { line: l, message } = &e else {
+                panic!("{e:?}");
+            };
+            assert_eq!(*l, line, "{faces}");
+            assert!(message.contains(what), "{message}");
+        }
+        for bad in [
+            "vt\n",
+            "vt 1 2 3 4\n",
+            "vt a\n",
+            "vt 1e999 0\n",
+            "vt nan 0\n",
+        ] {
+            let e = parse_err(&format!("{head}{bad}"));
+            assert!(
+                matches!(e, MeshError::Parse { line: 5, .. }),
+                "{bad}: {e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn out_of_range_texture_indices_name_the_face() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1/1 2/2 3/1\n";
+        let e = parse_err(text);
+        assert_eq!(
+            e,
+            MeshError::UvOutOfRange {
+                face: 1,
+                index: 1,
+                uvs: 1
+            }
+        );
+        assert_eq!(
+            e.describe(&ObjLines::of(text)),
+            "face 2 (line 6) refers to texture coordinate 2, the mesh has 1 texture coordinates"
+        );
+        let e = parse_err("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/-2 2/1 3/1\n");
+        assert!(
+            matches!(
+                e,
+                MeshError::UvOutOfRange {
+                    face: 0,
+                    index: -1,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+    }
+
+    #[test]
     fn negative_indices_are_relative_to_the_vertices_so_far() {
-        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nf -3/-1 -1 -2//-2\n";
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nf -3 -1 -2//-2\n";
         let m = parse_obj(text).unwrap();
         assert_eq!(m.faces, vec![vec![0, 1, 2], vec![1, 3, 2]]);
     }

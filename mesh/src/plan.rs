@@ -44,7 +44,7 @@ use crate::grid::{face_grid, interior_face_grid, Combo};
 use crate::input::MeshInput;
 use crate::mem;
 use crate::refine::{try_refine, PolarSeed};
-use crate::stencil::StencilTable;
+use crate::stencil::{Primvar, StencilTable};
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
@@ -712,6 +712,30 @@ impl<'t> SurfacePlan<'t> {
     pub fn working_points(&self) -> usize {
         self.vertices + self.phantoms.len()
     }
+
+    /// Per-vertex data (`primvar[v]` for input vertex `v`: colours, weights,
+    /// …) carried to the working points as positions are: through every
+    /// refinement step, then the phantom points. `None` unless `primvar` has
+    /// one entry per input vertex. The working points' data are what the
+    /// patches' control points are made of, as OpenSubdiv's
+    /// `Far::PrimvarRefiner` refines primvars with the vertex stencils.
+    pub fn refine_primvar<P: Primvar>(&self, primvar: &[P]) -> Option<Vec<P>> {
+        if primvar.len() != self.input_vertices {
+            return None;
+        }
+        let mut level: Vec<P> = primvar.to_vec();
+        for s in &self.steps {
+            let mut next = alloc::vec![P::zero(); s.len()];
+            s.apply(&level, &mut next);
+            level = next;
+        }
+        level.truncate(self.vertices);
+        level.resize(self.vertices, P::zero());
+        let mut phantoms = alloc::vec![P::zero(); self.phantoms.len()];
+        self.phantoms.apply_chained(&level, &mut phantoms);
+        level.extend(phantoms);
+        Some(level)
+    }
 }
 
 /// Uncovered faces as input faces (each once, first reason), `fixable_only`
@@ -878,6 +902,7 @@ fn analyse(
 /// [`crate::adaptive::level::Level::new`]).
 fn validate(mesh: &MeshInput) -> Result<(), MeshError> {
     check_sizes_and_positions(mesh)?;
+    mesh.check_uvs()?;
     let nv = mesh.vertices.len();
     let nf = mesh.faces.len();
     for (face, f) in mesh.faces.iter().enumerate() {

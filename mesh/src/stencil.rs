@@ -2,9 +2,61 @@
 //! "stencil table" of OpenSubdiv's Far). Built once by the analysis (a
 //! refinement step, phantom points at boundaries), applied to new positions on
 //! every evaluation without allocating.
+//!
+//! The rows apply to any per-vertex data, not only positions: colours,
+//! weights, any vector type implementing [`Primvar`] (OpenSubdiv's
+//! `Far::PrimvarRefiner` takes any class with `Clear` and `AddWithWeight`
+//! the same way). Each row's weights sum to 1 (refinement and phantom rules
+//! are affine combinations), so constant data stay constant.
 
 use alloc::vec::Vec;
 use capdiv::{Point3, Real};
+
+/// Per-vertex data the stencils can combine: a zero and a weighted sum.
+pub trait Primvar: Clone {
+    /// The zero value (the start of every row's sum).
+    fn zero() -> Self;
+    /// `self += w · src`.
+    fn add_scaled(&mut self, src: &Self, w: f64);
+}
+
+impl<R: Real> Primvar for Point3<R> {
+    fn zero() -> Self {
+        Point3::ZERO
+    }
+    fn add_scaled(&mut self, src: &Self, w: f64) {
+        *self += *src * R::from_f64(w);
+    }
+}
+
+impl Primvar for f64 {
+    fn zero() -> Self {
+        0.0
+    }
+    fn add_scaled(&mut self, src: &Self, w: f64) {
+        *self += *src * w;
+    }
+}
+
+impl Primvar for f32 {
+    fn zero() -> Self {
+        0.0
+    }
+    fn add_scaled(&mut self, src: &Self, w: f64) {
+        *self += *src * w as f32;
+    }
+}
+
+impl<P: Primvar + Copy, const N: usize> Primvar for [P; N] {
+    fn zero() -> Self {
+        [P::zero(); N]
+    }
+    fn add_scaled(&mut self, src: &Self, w: f64) {
+        for (a, b) in self.iter_mut().zip(src) {
+            a.add_scaled(b, w);
+        }
+    }
+}
 
 /// Sparse rows `out[i] = Σ_k weights[k] · src[indices[k]]`, `k` over row `i`.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -87,21 +139,22 @@ impl StencilTable {
 
     /// Applies every row to `src`, writing `out[i]`. `out` must have
     /// [`Self::len`] entries and `src` at least [`Self::source_len`]; the
-    /// analysis guarantees both (rows past `out`'s end are skipped).
-    pub fn apply<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
+    /// analysis guarantees both (rows past `out`'s end are skipped, indices
+    /// past `src`'s end add nothing).
+    pub fn apply<P: Primvar>(&self, src: &[P], out: &mut [P]) {
         self.apply_from(src, out, 0);
     }
 
     /// [`Self::apply`] for rows `first..first + out.len()`, writing row
     /// `first + k` to `out[k]`: a part of the output, for one thread.
-    pub fn apply_from<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>], first: usize) {
+    pub fn apply_from<P: Primvar>(&self, src: &[P], out: &mut [P], first: usize) {
         let rows = self.len().saturating_sub(first);
         for (k, o) in out.iter_mut().enumerate().take(rows) {
             let i = first + k;
-            let mut acc = Point3::ZERO;
+            let mut acc = P::zero();
             for (idx, w) in self.row(i) {
                 if let Some(p) = src.get(idx as usize) {
-                    acc += *p * R::from_f64(w);
+                    acc.add_scaled(p, w);
                 }
             }
             *o = acc;
@@ -113,20 +166,20 @@ impl StencilTable {
     /// `src.len() + k` is `out[k]` (`k < i`). Rows of later points (the
     /// adaptive refinement's, [`crate::adaptive`]) are built over earlier
     /// ones; indices not yet written read as zero.
-    pub fn apply_chained<R: Real>(&self, src: &[Point3<R>], out: &mut [Point3<R>]) {
+    pub fn apply_chained<P: Primvar>(&self, src: &[P], out: &mut [P]) {
         let base = src.len();
         for i in 0..out.len().min(self.len()) {
-            let mut acc = Point3::ZERO;
+            let mut acc = P::zero();
             for (idx, w) in self.row(i) {
                 let idx = idx as usize;
                 let p = if idx < base {
-                    src[idx]
+                    &src[idx]
                 } else if idx - base < i {
-                    out[idx - base]
+                    &out[idx - base]
                 } else {
                     continue;
                 };
-                acc += p * R::from_f64(w);
+                acc.add_scaled(p, w);
             }
             out[i] = acc;
         }

@@ -99,6 +99,7 @@ fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {
         hole: p.hole,
         hole_point: p.hole_point,
         tag: p.face,
+        uv: None,
     });
     tessellate(patches, 3, 1e-9)
 }

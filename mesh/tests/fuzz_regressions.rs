@@ -75,6 +75,7 @@ fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge>
                 hole: p.hole,
                 hole_point: p.hole_point,
                 tag: p.level,
+                uv: None,
             }),
             1,
             1e-9 * size,

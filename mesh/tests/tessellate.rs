@@ -709,6 +709,7 @@ fn obj_text_lists_vertices_normals_and_faces() {
             hole: t.hole,
             hole_point: t.hole_point.cast(),
             tag: t.tag,
+            uv: t.uv,
         }),
         1,
         1e-5f32,

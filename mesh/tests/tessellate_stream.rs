@@ -54,6 +54,7 @@ fn tess_patch(p: &PatchRecord<f64>) -> TessPatch<f64> {
         hole: p.hole,
         hole_point: p.hole_point,
         tag: p.level,
+        uv: None,
     }
 }
 

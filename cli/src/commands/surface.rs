@@ -51,8 +51,8 @@ use capdiv_mesh::tessellate::{
     TessPatch, Tessellation,
 };
 use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
-    Topology,
+    CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
+    SurfacePlan, SurfaceSink, Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -212,7 +212,12 @@ fn produce<R: Scalar>(
     Ok(match format {
         SurfaceFormat::Json => {
             let out = SurfaceJson {
-                patches: surface.patches.iter().map(PatchJson::new).collect(),
+                patches: surface
+                    .patches
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| PatchJson::new(p).with_uv(surface.uvs.get(k)))
+                    .collect(),
                 caps: surface.caps.iter().map(CapJson::new).collect(),
                 summary: &surface.summary,
             };
@@ -343,6 +348,9 @@ pub struct Surface<R> {
     pub patches: Vec<PatchRecord<R>>,
     /// Caps in the evaluator's order (polar first, then EG / Catmull-Clark).
     pub caps: Vec<CapRecord<R>>,
+    /// Per patch, its texture coordinates ([`FaceVarying`]) when the input
+    /// has UVs; empty otherwise.
+    pub uvs: Vec<PatchUv>,
     /// Counts, reasons, times.
     pub summary: Summary,
 }
@@ -463,13 +471,18 @@ pub fn build_with<R: Scalar>(
     options: &SchemeOptions<'_>,
 ) -> Result<Surface<R>, CliError> {
     let mut sink = Collect::new();
-    let summary = run_scheme::<R>(name, mesh, options, &mut sink)?;
+    let (summary, facevarying) = run_scheme::<R>(name, mesh, options, &mut sink)?;
     if let Some(bytes) = sink.refused {
         return Err(CliError::out_of_memory(name, bytes));
     }
+    let uvs = match facevarying {
+        Some(fv) => sink.patches.iter().map(|p| fv.patch(p)).collect(),
+        None => Vec::new(),
+    };
     Ok(Surface {
         patches: sink.patches,
         caps: sink.caps,
+        uvs,
         summary,
     })
 }
@@ -559,14 +572,15 @@ impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
 
 /// Validates, analyses and evaluates `mesh` in `R` into `sink`, refusing a
 /// surface of more than `options.max_patches` patches before making any;
-/// returns the summary. A surface that is not finite or has no patch is an
+/// returns the summary and, when the mesh has UVs, their face-varying
+/// interpolation over the plan. A surface that is not finite or has no patch is an
 /// error after the evaluation (a streaming sink has then written part of it).
 pub fn run_scheme<R: Scalar>(
     name: &str,
     mesh: &MeshInput,
     options: &SchemeOptions<'_>,
     sink: &mut (dyn SurfaceSink<R> + Send),
-) -> Result<Summary, CliError> {
+) -> Result<(Summary, Option<FaceVarying>), CliError> {
     let mesh_err = |error| CliError::mesh(name, error);
     let eval_err = |error| CliError::eval(name, error);
     let start = Instant::now();
@@ -630,7 +644,7 @@ pub fn run_scheme<R: Scalar>(
     if levels.is_empty() {
         levels.push(0);
     }
-    Ok(Summary {
+    let summary = Summary {
         input: InputSummary {
             vertices: plan.input_vertices,
             faces: plan.input_faces,
@@ -668,7 +682,9 @@ pub fn run_scheme<R: Scalar>(
             analysis: analysis.as_secs_f64() * 1e3,
             evaluation: evaluation.as_secs_f64() * 1e3,
         },
-    })
+    };
+    let facevarying = FaceVarying::new(mesh, &plan).map_err(mesh_err)?;
+    Ok((summary, facevarying))
 }
 
 /// All control points of a patch (either degree).
@@ -706,6 +722,10 @@ pub struct PatchJson<R> {
     pub domain: [f64; 4],
     /// `(d+1)²` points, `points[(d+1)·j + i]` = `b_ij`, `i` along `u`.
     pub points: Vec<[R; 3]>,
+    /// With input UVs: the texture coordinates at the patch's corners
+    /// `(u, v)` = (0,0), (1,0), (1,1), (0,1), bilinear in between.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uv: Option<[[f64; 2]; 4]>,
 }
 
 impl<R: Scalar> PatchJson<R> {
@@ -729,7 +749,14 @@ impl<R: Scalar> PatchJson<R> {
             corner: p.corner,
             domain: p.domain,
             points,
+            uv: None,
         }
+    }
+
+    /// The patch with its texture coordinates, if given.
+    pub fn with_uv(mut self, uv: Option<&PatchUv>) -> Self {
+        self.uv = uv.map(|u| u.corners);
+        self
     }
 }
 
@@ -1055,12 +1082,13 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         s: &Surface<S>,
         tag: fn(&PatchRecord<S>) -> u32,
     ) -> impl Iterator<Item = TessPatch<S>> + '_ {
-        s.patches.iter().map(move |p| TessPatch {
+        s.patches.iter().enumerate().map(move |(k, p)| TessPatch {
             geometry: p.geometry,
             finer: p.finer,
             hole: p.hole,
             hole_point: p.hole_point,
             tag: tag(p),
+            uv: s.uvs.get(k).copied(),
         })
     }
     let t = match guide {
@@ -1091,10 +1119,28 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         triangles,
         quads: t.faces.len() - triangles,
         degenerate_dropped: t.degenerate_dropped,
-        closed: is_closed_and_oriented(&t.faces),
+        closed: closed_through_seams(&t),
         time_ms: start.elapsed().as_secs_f64() * 1e3,
     };
     Tess { mesh: t, info }
+}
+
+/// [`is_closed_and_oriented`] of the tessellation, UV seams joined (a seam
+/// splits vertices for the texture, not the surface).
+fn closed_through_seams<R>(t: &Tessellation<R>) -> Result<(), BadEdge> {
+    if t.seam_origin.is_empty() {
+        return is_closed_and_oriented(&t.faces);
+    }
+    let origin = |i: &u32| t.seam_origin.get(*i as usize).copied().unwrap_or(*i);
+    let faces: Vec<Face> = t
+        .faces
+        .iter()
+        .map(|f| match f {
+            Face::Tri(c) => Face::Tri([origin(&c[0]), origin(&c[1]), origin(&c[2])]),
+            Face::Quad(c) => Face::Quad(c.each_ref().map(origin)),
+        })
+        .collect();
+    is_closed_and_oriented(&faces)
 }
 
 /// The closedness check in words.

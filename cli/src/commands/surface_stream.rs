@@ -32,6 +32,11 @@ use std::time::{Duration, Instant};
 /// Whether `surface` streams this output (see the module doc).
 pub fn streams(args: &SurfaceArgs, mesh: &MeshInput) -> bool {
     use crate::args::Precision;
+    // Face-varying UVs go through the collected path only (its tessellation
+    // splits welded vertices at seams; the streaming weld does not).
+    if mesh.has_uvs() {
+        return false;
+    }
     match args.format() {
         SurfaceFormat::Json => !args.pretty,
         SurfaceFormat::Obj => args.precision == Precision::F64 && Topology::new(mesh).is_ok(),
@@ -131,7 +136,7 @@ pub fn obj(
         obj: &mut obj,
         time: Duration::ZERO,
     };
-    let result = run_scheme::<f64>(name, mesh, &options(args, tables), &mut sink);
+    let result = run_scheme::<f64>(name, mesh, &options(args, tables), &mut sink).map(|(s, _)| s);
     let start = Instant::now();
     let s = sink.tess.finish(sink.obj);
     let (tess_time, time) = (sink.time, sink.time + start.elapsed());
@@ -242,7 +247,7 @@ pub fn json<R: crate::Scalar>(
     };
     let mut opts = options(args, tables);
     opts.precision = precision;
-    let summary = run_scheme::<R>(name, mesh, &opts, &mut sink)?;
+    let (summary, _) = run_scheme::<R>(name, mesh, &opts, &mut sink)?;
     if let Some(e) = sink.error.take() {
         return Err(io(e));
     }

@@ -1,8 +1,11 @@
 //! glTF 2.0 (Khronos, *glTF 2.0 Specification*) of a welded tessellation:
 //! one node per group (an OBJ object, or the whole surface), each with a mesh
 //! of one indexed triangle primitive (§3.7.2, mode 4 `TRIANGLES`) carrying
-//! `POSITION` and `NORMAL` (`FLOAT` `VEC3`, §3.7.2.1) and `UNSIGNED_INT`
+//! `POSITION` and `NORMAL` (`FLOAT` `VEC3`, §3.7.2.1), `TEXCOORD_0`
+//! (`FLOAT` `VEC2`) when the tessellation has UVs, and `UNSIGNED_INT`
 //! indices; one material (§3.9, not metallic) shared by all.
+//! glTF's UV origin is the image's top-left corner, OBJ's (and the input's)
+//! its bottom-left: a UV `(u, v)` is written `(u, 1 − v)`.
 //!
 //! Each group's vertices are the tessellation's vertices its faces use,
 //! renumbered in order of first use (a vertex shared by two groups appears in
@@ -87,16 +90,22 @@ pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Document {
         let (min, max) = bounds(&part.positions);
         let position = push_attribute(&mut root, &mut bin, buffer, &part.positions, min, max);
         let normal = push_attribute(&mut root, &mut bin, buffer, &part.normals, None, None);
+        let texcoord =
+            (!part.uvs.is_empty()).then(|| push_vec2(&mut root, &mut bin, buffer, &part.uvs));
         let indices = push_indices(&mut root, &mut bin, buffer, &part.indices);
+        let mut attributes = BTreeMap::from([
+            (Valid(json::mesh::Semantic::Positions), position),
+            (Valid(json::mesh::Semantic::Normals), normal),
+        ]);
+        if let Some(t) = texcoord {
+            attributes.insert(Valid(json::mesh::Semantic::TexCoords(0)), t);
+        }
         let mesh = root.push(json::Mesh {
             extensions: None,
             extras: Default::default(),
             name: g.name.clone(),
             primitives: vec![json::mesh::Primitive {
-                attributes: BTreeMap::from([
-                    (Valid(json::mesh::Semantic::Positions), position),
-                    (Valid(json::mesh::Semantic::Normals), normal),
-                ]),
+                attributes,
                 extensions: None,
                 extras: Default::default(),
                 indices: Some(indices),
@@ -163,6 +172,8 @@ pub fn gltf_text(doc: &Document) -> Vec<u8> {
 struct Part {
     positions: Vec<[f32; 3]>,
     normals: Vec<[f32; 3]>,
+    /// `(u, 1 − v)` per vertex; empty without UVs.
+    uvs: Vec<[f32; 2]>,
     indices: Vec<u32>,
 }
 
@@ -215,9 +226,20 @@ impl Part {
                     .unwrap_or([0.0, 0.0, 1.0])
             })
             .collect();
+        let uvs = if t.uvs.is_empty() {
+            Vec::new()
+        } else {
+            used.iter()
+                .map(|&v| {
+                    let [u, w] = t.uvs.get(v as usize).copied().unwrap_or([0.0; 2]);
+                    [u as f32, (1.0 - w) as f32]
+                })
+                .collect()
+        };
         Part {
             positions,
             normals,
+            uvs,
             indices,
         }
     }
@@ -277,6 +299,37 @@ fn push_attribute(
         json::accessor::Type::Vec3,
         min,
         max,
+    )
+}
+
+/// Appends `data` as a view (`ARRAY_BUFFER`) and a `FLOAT` `VEC2` accessor.
+fn push_vec2(
+    root: &mut json::Root,
+    bin: &mut Vec<u8>,
+    buffer: json::Index<json::Buffer>,
+    data: &[[f32; 2]],
+) -> json::Index<json::Accessor> {
+    let offset = bin.len();
+    for v in data {
+        for x in v {
+            bin.extend_from_slice(&x.to_le_bytes());
+        }
+    }
+    let view = push_view(
+        root,
+        buffer,
+        offset,
+        bin.len() - offset,
+        json::buffer::Target::ArrayBuffer,
+    );
+    push_accessor(
+        root,
+        view,
+        data.len(),
+        json::accessor::ComponentType::F32,
+        json::accessor::Type::Vec2,
+        None,
+        None,
     )
 }
 

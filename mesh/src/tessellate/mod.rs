@@ -19,7 +19,12 @@
 //!   coordinate: `max |Δx|, |Δy|, |Δz| ≤ tol`), directly or through a chain
 //!   of such samples, are merged into one vertex (sorting on quantised
 //!   coordinates, `O(N log N)`; see [`weld`]). Vertices are numbered in the
-//!   order of their first sample.
+//!   order of their first sample;
+//! - with texture coordinates ([`TessPatch::uv`]), every sample gets its
+//!   patch's bilinear UV, and a welded vertex whose samples carry different
+//!   UVs (a UV seam) is split into one vertex per UV
+//!   ([`weld::split_by_uv`]); nothing else changes. Without UVs the result
+//!   is exactly what it is without this step.
 //!
 //! The result is a [`Tessellation`]: a closed input surface gives a closed,
 //! consistently oriented mesh ([`is_closed_and_oriented`]). Faces are
@@ -33,6 +38,7 @@ mod sample;
 pub mod stream;
 pub mod weld;
 
+use crate::facevarying::PatchUv;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
@@ -81,6 +87,8 @@ pub struct TessPatch<R> {
     pub hole_point: Point3<R>,
     /// Free tag copied to every output face of this patch.
     pub tag: u32,
+    /// Texture coordinates over the patch, if the surface has them.
+    pub uv: Option<PatchUv>,
 }
 
 impl<R: Real> TessPatch<R> {
@@ -92,6 +100,7 @@ impl<R: Real> TessPatch<R> {
             hole: 0,
             hole_point: Point3::ZERO,
             tag,
+            uv: None,
         }
     }
 }
@@ -144,6 +153,15 @@ pub struct Tessellation<R> {
     pub faces: Vec<Face>,
     /// Per face: the [`TessPatch::tag`] of its patch.
     pub tags: Vec<u32>,
+    /// Per vertex: its texture coordinates, when the patches have them
+    /// ([`TessPatch::uv`]; a patch without them gives (0, 0)); empty
+    /// otherwise.
+    pub uvs: Vec<[f64; 2]>,
+    /// With UVs: per vertex, the first vertex of its position class (itself
+    /// unless a UV seam split the class), so that checks of the surface's
+    /// connectivity ([`is_closed_and_oriented`] of faces mapped through it)
+    /// see through the seams; empty without UVs.
+    pub seam_origin: Vec<u32>,
     /// Samples taken before welding (grid points, edge midpoints, hole points).
     pub samples: usize,
     /// Faces dropped because welding made two of their corners equal (none
@@ -165,7 +183,7 @@ pub fn tessellate<R: Real>(
 ) -> Tessellation<R> {
     let raw = sample_all(patches, grid);
     let rep = weld::representatives(&raw.positions, weld_tolerance);
-    assemble(raw, &rep)
+    assemble(raw, rep)
 }
 
 /// [`tessellate`] of `patches`, welded where the samples of `guide` weld:
@@ -189,7 +207,7 @@ pub fn tessellate_guided<R: Real, S: Real>(
     } else {
         weld::representatives(&raw.positions, fallback_tolerance)
     };
-    assemble(raw, &rep)
+    assemble(raw, rep)
 }
 
 /// Every patch's samples and faces, unwelded.
@@ -205,16 +223,25 @@ fn sample_all<R: Real>(
 }
 
 /// Welds `raw` into the tessellation: sample `k` becomes the vertex of its
-/// representative `rep[k] ≤ k` (as [`weld::representatives`] returns them).
-fn assemble<R: Real>(raw: sample::Raw<R>, rep: &[u32]) -> Tessellation<R> {
+/// representative `rep[k] ≤ k` (as [`weld::representatives`] returns them),
+/// split across UV seams when the samples have UVs.
+fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     let sample::Raw {
         positions: raw_pos,
         normals: raw_nrm,
         faces: raw_faces,
         tags: raw_tags,
+        uvs: mut raw_uvs,
         ..
     } = raw;
     let samples = raw_pos.len();
+    let (rep, by_position) = if raw_uvs.is_empty() {
+        (rep, Vec::new())
+    } else {
+        raw_uvs.resize(samples, [0.0; 2]);
+        (weld::split_by_uv(&rep, &raw_uvs, weld::UV_TOLERANCE), rep)
+    };
+    let rep = rep.as_slice();
     assert!(
         u32::try_from(samples).is_ok(),
         "tessellate: more than u32::MAX samples"
@@ -226,11 +253,20 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: &[u32]) -> Tessellation<R> {
     let mut normals = Vec::new();
     // Whether some patch sample (not only hole points) went into the vertex.
     let mut sampled = Vec::new();
+    let mut uvs = Vec::new();
+    let mut seam_origin = Vec::new();
     for k in 0..samples {
         let r = rep[k] as usize;
         if r == k {
             index[k] = positions.len() as u32;
             positions.push(raw_pos[k]);
+            if let Some(uv) = raw_uvs.get(k) {
+                uvs.push(*uv);
+            }
+            if let Some(&p) = by_position.get(k) {
+                // The position class's first sample started a vertex first.
+                seam_origin.push(index[p as usize]);
+            }
             normals.push(Point3::ZERO);
             sampled.push(false);
         }
@@ -291,6 +327,8 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: &[u32]) -> Tessellation<R> {
         normals,
         faces,
         tags,
+        uvs,
+        seam_origin,
         samples,
         degenerate_dropped,
     }

@@ -8,6 +8,8 @@ use core::fmt::{Display, LowerExp, Write};
 /// OBJ text: `header` lines as `#` comments, then one `v x y z` and one
 /// `vn x y z` line per vertex, then one `f a//a b//b c//c[ d//d]` line per
 /// face (1-based, counter-clockwise about the normals, tags not written).
+/// With texture coordinates ([`Tessellation::uvs`]), a `vt u v` line follows
+/// each vertex's `vn` and faces are written `f a/a/a b/b/b …`.
 /// Numbers as [`write_number`]: every digit needed to read them back
 /// exactly, no more.
 pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[String]) -> String {
@@ -15,15 +17,29 @@ pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[St
     for line in header {
         let _ = writeln!(text, "# {line}");
     }
-    for (p, n) in t.positions.iter().zip(&t.normals) {
+    let with_uv = !t.uvs.is_empty();
+    for (k, (p, n)) in t.positions.iter().zip(&t.normals).enumerate() {
         write_point(&mut text, "v", p.0);
         write_point(&mut text, "vn", n.0);
+        if with_uv {
+            let uv = t.uvs.get(k).copied().unwrap_or([0.0; 2]);
+            text.push_str("vt");
+            for x in uv {
+                text.push(' ');
+                write_number(&mut text, x);
+            }
+            text.push('\n');
+        }
     }
     for f in &t.faces {
         text.push('f');
         for &i in f.corners() {
             let i = i as u64 + 1;
-            let _ = write!(text, " {i}//{i}");
+            if with_uv {
+                let _ = write!(text, " {i}/{i}/{i}");
+            } else {
+                let _ = write!(text, " {i}//{i}");
+            }
         }
         text.push('\n');
     }

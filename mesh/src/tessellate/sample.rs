@@ -2,6 +2,7 @@
 //! its own samples (shared edges are sampled once per patch and merged later).
 
 use super::{Face, PatchGeometry, TessPatch};
+use crate::facevarying::PatchUv;
 use alloc::vec::Vec;
 use capdiv::{Point3, Real, TensorPatch};
 
@@ -19,13 +20,19 @@ pub(super) struct Raw<R> {
     pub faces: Vec<Face>,
     /// Per face: its patch's tag.
     pub tags: Vec<u32>,
+    /// Per sample: its UV; empty until a patch with UVs comes, then as long
+    /// as `positions` after each such patch (earlier samples (0, 0)).
+    pub uvs: Vec<[f64; 2]>,
+    /// `k / (2n)` in `f64`, for the UVs.
+    uv_params: Vec<f64>,
 }
 
 impl<R: Real> Raw<R> {
     pub fn new(grid: usize) -> Self {
-        let params = (0..=2 * grid)
-            .map(|k| R::from_f64(k as f64 / (2 * grid) as f64))
+        let uv_params: Vec<f64> = (0..=2 * grid)
+            .map(|k| k as f64 / (2 * grid) as f64)
             .collect();
+        let params = uv_params.iter().map(|&t| R::from_f64(t)).collect();
         Raw {
             grid,
             params,
@@ -33,14 +40,52 @@ impl<R: Real> Raw<R> {
             normals: Vec::new(),
             faces: Vec::new(),
             tags: Vec::new(),
+            uvs: Vec::new(),
+            uv_params,
         }
     }
 
     pub fn push(&mut self, p: &TessPatch<R>) {
+        let start = self.positions.len();
         match &p.geometry {
             PatchGeometry::Cubic(g) => self.push_patch(g, p),
             PatchGeometry::Quartic(g) => self.push_patch(g, p),
         }
+        if let Some(uv) = &p.uv {
+            self.push_uvs(uv, p, start);
+        }
+    }
+
+    /// The UVs of the samples `start..` just pushed for `p`, in the order
+    /// [`Raw::push_patch`] takes them.
+    fn push_uvs(&mut self, uv: &PatchUv, p: &TessPatch<R>, start: usize) {
+        self.uvs.resize(start, [0.0; 2]);
+        let n = self.grid;
+        let t = &self.uv_params;
+        for a in 0..=n {
+            for b in 0..=n {
+                self.uvs.push(uv.at(t[2 * a], t[2 * b]));
+            }
+        }
+        for e in 0..4u8 {
+            if p.finer & (1 << e) == 0 {
+                continue;
+            }
+            for c in 0..n {
+                let m = 2 * c + 1;
+                let (i, j) = match e {
+                    0 => (m, 0),
+                    1 => (2 * n, m),
+                    2 => (m, 2 * n),
+                    _ => (0, m),
+                };
+                self.uvs.push(uv.at(t[i], t[j]));
+            }
+        }
+        if p.hole & 0xf != 0 {
+            self.uvs.push(uv.hole);
+        }
+        debug_assert_eq!(self.uvs.len(), self.positions.len());
     }
 
     fn sample<const K: usize>(&mut self, g: &TensorPatch<R, K>, i: usize, j: usize) {

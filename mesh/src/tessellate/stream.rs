@@ -253,6 +253,8 @@ impl<R: Real> StreamTessellator<R> {
             hole: p.hole,
             hole_point: p.hole_point,
             tag,
+            // The streaming weld carries positions and normals only.
+            uv: None,
         };
         self.push(&t, p.cap, sink);
     }

@@ -141,6 +141,54 @@ pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Vec<u32> {
     rep
 }
 
+/// Two texture coordinates closer than this (per component, relative to
+/// `max(1, |uv|)`) belong to one vertex. The UVs of one point sampled by two
+/// patches differ by rounding only (about 1e-16: the bilinear forms of the
+/// two patches), a UV seam by the texture layout's own gaps; 1e-9 lies far
+/// from both.
+pub const UV_TOLERANCE: f64 = 1e-9;
+
+/// Splits the classes of `rep` (as [`representatives`] returns them: each
+/// point's class's first point, `rep[k] ≤ k`) by texture coordinate: points
+/// of one class whose `uvs` differ by more than `tol` (see
+/// [`UV_TOLERANCE`]) from the first point of every sub-class so far start
+/// a sub-class of their own. Returns each point's sub-class's first point.
+/// Points of different classes are never joined.
+pub fn split_by_uv(rep: &[u32], uvs: &[[f64; 2]], tol: f64) -> Vec<u32> {
+    const END: u32 = u32::MAX;
+    let close = |a: [f64; 2], b: [f64; 2]| {
+        (0..2).all(|d| {
+            let scale = libm::fmax(1.0, libm::fmax(libm::fabs(a[d]), libm::fabs(b[d])));
+            libm::fabs(a[d] - b[d]) <= tol * scale
+        })
+    };
+    // The sub-classes of a class, as a chain of their first points from the
+    // class's first point.
+    let mut next = vec![END; rep.len()];
+    let mut out = vec![0u32; rep.len()];
+    for k in 0..rep.len() {
+        let r = rep[k] as usize;
+        if r >= k {
+            out[k] = k as u32;
+            continue;
+        }
+        let mut head = r;
+        loop {
+            if close(uvs[k], uvs[head]) {
+                out[k] = head as u32;
+                break;
+            }
+            if next[head] == END {
+                next[head] = k as u32;
+                out[k] = k as u32;
+                break;
+            }
+            head = next[head] as usize;
+        }
+    }
+    out
+}
+
 /// Root of `s`, halving the path.
 fn find(parent: &mut [u32], mut s: usize) -> usize {
     while parent[s] as usize != s {

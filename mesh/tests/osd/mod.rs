@@ -226,6 +226,18 @@ pub fn job_text(job: &Job) -> String {
     for v in &job.limits {
         writeln!(t, "{v}").unwrap();
     }
+    // Face-varying UVs (none unless the mesh has them).
+    let uv = mesh.has_uvs();
+    writeln!(t, "uvs {}", if uv { mesh.uvs.len() } else { 0 }).unwrap();
+    if uv {
+        for p in &mesh.uvs {
+            writeln!(t, "{:e} {:e}", p[0], p[1]).unwrap();
+        }
+        for f in &mesh.uv_faces {
+            let line: Vec<String> = f.iter().map(|i| i.to_string()).collect();
+            writeln!(t, "{}", line.join(" ")).unwrap();
+        }
+    }
     t
 }
 
@@ -244,6 +256,17 @@ fn point(words: &[&str], line: &str) -> [f64; 3] {
 /// including topology OpenSubdiv rejects.
 #[track_caller]
 pub fn run(job: &Job) -> (Vec<Answer>, Vec<[f64; 3]>) {
+    let (answers, limits, _) = run_with_uvs(job);
+    (answers, limits)
+}
+
+/// Per query, OpenSubdiv's face-varying UV (`None` where no patch is).
+pub type UvAnswers = Vec<Option<[f64; 2]>>;
+
+/// [`run`], and, when the mesh has UVs, per query OpenSubdiv's
+/// face-varying UV there (`FVAR_LINEAR_ALL`).
+#[track_caller]
+pub fn run_with_uvs(job: &Job) -> (Vec<Answer>, Vec<[f64; 3]>, UvAnswers) {
     let input = job_text(job);
     let mut child = Command::new(oracle())
         .stdin(Stdio::piped())
@@ -291,5 +314,24 @@ pub fn run(job: &Job) -> (Vec<Answer>, Vec<[f64; 3]>) {
             point(&words, line)
         })
         .collect();
-    (answers, limits)
+    let uvs = if job.mesh.has_uvs() {
+        (0..job.queries.len())
+            .map(|_| {
+                let line = next();
+                let words: Vec<&str> = line.split_whitespace().collect();
+                assert!(
+                    words.len() == 4 && words[0] == "uv",
+                    "bad oracle uv {line:?}"
+                );
+                let uv = [words[2], words[3]].map(|w| {
+                    w.parse::<f64>()
+                        .unwrap_or_else(|_| panic!("bad number in oracle uv {line:?}"))
+                });
+                (words[1] == "ok").then_some(uv)
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    (answers, limits, uvs)
 }

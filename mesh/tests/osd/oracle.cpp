@@ -1,7 +1,8 @@
 // OpenSubdiv 3.5 as an oracle for capdiv-mesh's tests: the Catmull-Clark
 // limit surface of a tagged mesh (creases, corners, holes, boundary rule,
-// creasing method, triangle rule) at given ptex points, and the limit positions of given
-// input vertices. The job comes on stdin, the answers go to stdout (format in
+// creasing method, triangle rule) at given ptex points, the limit positions of given
+// input vertices, and — when the job has UVs — the face-varying UV channel
+// interpolated with FVAR_LINEAR_ALL at the same ptex points. The job comes on stdin, the answers go to stdout (format in
 // mesh/tests/osd/mod.rs); anything OpenSubdiv reports goes to stderr, and any
 // error exits non-zero.
 //
@@ -64,6 +65,16 @@ struct Point {
         p[0] += w * src.p[0];
         p[1] += w * src.p[1];
         p[2] += w * src.p[2];
+    }
+};
+
+// A face-varying value (u, v) in double.
+struct Uv {
+    double p[2];
+    void Clear() { p[0] = p[1] = 0.0; }
+    void AddWithWeight(Uv const &src, double w) {
+        p[0] += w * src.p[0];
+        p[1] += w * src.p[1];
     }
 };
 
@@ -209,6 +220,20 @@ int main() {
         if (v < 0 || v >= nv) fail("limit vertex %d out of range", v);
     }
 
+    // Face-varying UVs: a pool of values and one index per face corner.
+    int nuv = header("uvs");
+    std::vector<Uv> uvs(nuv);
+    for (auto &t : uvs)
+        for (double &c : t.p) c = read<double>("uv coordinate");
+    std::vector<Far::Index> uvIndices;
+    if (nuv > 0) {
+        uvIndices.resize(faceVerts.size());
+        for (auto &i : uvIndices) {
+            i = read<int>("uv index");
+            if (i < 0 || i >= nuv) fail("uv index %d out of range", i);
+        }
+    }
+
     // ---- topology
     Far::TopologyDescriptor desc;
     desc.numVertices = nv;
@@ -337,6 +362,81 @@ int main() {
             printPoint(limit[d]);
             std::printf("\n");
         }
+    }
+    // ---- face-varying UVs: FVAR_LINEAR_ALL, a face-varying patch table,
+    // the UV at each query's ptex point (after the positions and limits).
+    if (nuv > 0 && nq > 0) {
+        Far::TopologyDescriptor::FVarChannel channel;
+        channel.numValues = nuv;
+        channel.valueIndices = uvIndices.data();
+        Far::TopologyDescriptor fdesc = desc;
+        fdesc.numFVarChannels = 1;
+        fdesc.fvarChannels = &channel;
+        Sdc::Options fvarOptions = sdcOptions;
+        fvarOptions.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_ALL);
+        Factory::Options fvarFactory(Sdc::SCHEME_CATMARK, fvarOptions);
+        fvarFactory.validateFullTopology = true;
+        std::unique_ptr<Far::TopologyRefiner> refiner(Factory::Create(fdesc, fvarFactory));
+        if (!refiner) fail("TopologyRefinerFactory rejected the mesh with UVs");
+        checkErrors("creating the refiner with UVs");
+
+        Far::PatchTableFactory::Options patchOptions(isolation);
+        patchOptions.SetPatchPrecision<double>();
+        patchOptions.SetFVarPatchPrecision<double>();
+        patchOptions.useInfSharpPatch = true;
+        patchOptions.useSingleCreasePatch = false;
+        patchOptions.generateLegacySharpCornerPatches = false;
+        patchOptions.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+        patchOptions.generateFVarTables = true;
+        patchOptions.generateVaryingTables = false;
+        Far::TopologyRefiner::AdaptiveOptions adaptive = patchOptions.GetRefineAdaptiveOptions();
+        adaptive.useInfSharpPatch = true;
+        adaptive.useSingleCreasePatch = false;
+        adaptive.considerFVarChannels = true;
+        refiner->RefineAdaptive(adaptive);
+        checkErrors("refining adaptively with UVs");
+        std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, patchOptions));
+        if (!table) fail("PatchTableFactory failed with UVs");
+        checkErrors("creating the patch table with UVs");
+
+        int nRefined = refiner->GetNumFVarValuesTotal(0);
+        int nLocal = table->GetNumLocalPointsFaceVarying(0);
+        std::vector<Uv> values(nRefined + nLocal);
+        for (int i = 0; i < nuv; ++i) values[i] = uvs[i];
+        Far::PrimvarRefinerReal<double> primvar(*refiner);
+        Uv *src = values.data();
+        for (int level = 1; level < refiner->GetNumLevels(); ++level) {
+            Uv *dst = src + refiner->GetLevel(level - 1).GetNumFVarValues(0);
+            primvar.InterpolateFaceVarying(level, src, dst, 0);
+            src = dst;
+        }
+        if (nLocal > 0) {
+            Far::StencilTableReal<double> const *stencils =
+                table->GetLocalPointFaceVaryingStencilTable<double>(0);
+            if (!stencils) fail("no double face-varying local point stencil table");
+            stencils->UpdateValues(values.data(), values.data() + nRefined);
+        }
+        checkErrors("interpolating UVs");
+
+        Far::PtexIndices ptex(*refiner);
+        Far::PatchMap patchMap(*table);
+        std::vector<double> w(20);
+        for (auto const &q : queries) {
+            int ptexFace = ptex.GetFaceId(q.face) + (q.corner < 0 ? 0 : q.corner);
+            Far::PatchTable::PatchHandle const *handle = patchMap.FindPatch(ptexFace, q.u, q.v);
+            if (!handle) {
+                std::printf("uv none 0 0\n");
+                continue;
+            }
+            Far::ConstIndexArray cvs = table->GetPatchFVarValues(*handle, 0);
+            if ((int)w.size() < cvs.size()) w.resize(cvs.size());
+            table->EvaluateBasisFaceVarying(*handle, q.u, q.v, w.data(), 0, 0, 0, 0, 0, 0);
+            Uv x;
+            x.Clear();
+            for (int i = 0; i < cvs.size(); ++i) x.AddWithWeight(values[cvs[i]], w[i]);
+            std::printf("uv ok %.17g %.17g\n", x.p[0], x.p[1]);
+        }
+        checkErrors("evaluating UVs");
     }
     std::fflush(stdout);
     return 0;

@@ -393,6 +393,8 @@ impl Scene {
             normals: Vec::new(),
             faces: Vec::new(),
             tags: Vec::new(),
+            uvs: Vec::new(),
+            seam_origin: Vec::new(),
             samples: s.len(),
             degenerate_dropped: 0,
         };
