@@ -193,6 +193,11 @@ pub fn obj(
     let mut outcome = Outcome::new(Vec::new(), Sink::Stdout);
     if !args.quiet {
         outcome.report = report(name, &summary, Some(&info), naming);
+        outcome.report.push_str(&format!(
+            "  streamed     weld table at most {}, {} waiting for a normal at most\n",
+            count(s.peak_weld, "vertex", "vertices"),
+            count(s.peak_waiting, "vertex or face", "vertices and faces")
+        ));
     }
     Ok(outcome)
 }
