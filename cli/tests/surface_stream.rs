@@ -183,3 +183,22 @@ fn a_refused_stream_writes_no_file() {
         assert_eq!(leftovers.len(), 1, "{leftovers:?}");
     }
 }
+
+/// An empty surface (every face a hole) is refused before any byte of a
+/// streamed output reaches stdout.
+#[test]
+fn an_empty_streamed_surface_writes_nothing() {
+    let mesh = serde_json::json!({
+        "kind": "mesh",
+        "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]],
+        "faces": [[0, 1, 2, 3]],
+        "holes": [0]
+    });
+    let text = serde_json::to_vec(&mesh).unwrap();
+    for format in ["obj", "json"] {
+        let run = capdiv(&["surface", "--format", format, "-"], Some(&text));
+        assert_eq!(run.code, Some(2), "{format}: {}", run.stderr);
+        assert!(run.stdout.is_empty(), "{format}: {}", run.stdout_str());
+        assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    }
+}

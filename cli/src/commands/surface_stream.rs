@@ -44,15 +44,23 @@ pub fn streams(args: &SurfaceArgs, mesh: &MeshInput) -> bool {
     }
 }
 
-/// `fmt::Write` over an `io::Write`, keeping the first I/O error.
+/// `fmt::Write` over an `io::Write`, keeping the first I/O error; `header`
+/// goes first, with the first write (a surface refused as empty writes
+/// nothing).
 struct IoText<'a, W> {
     w: &'a mut W,
+    header: String,
     error: Option<std::io::Error>,
 }
 
 impl<W: Write> std::fmt::Write for IoText<'_, W> {
     fn write_str(&mut self, s: &str) -> std::fmt::Result {
-        self.w.write_all(s.as_bytes()).map_err(|e| {
+        let header = std::mem::take(&mut self.header);
+        let all = self
+            .w
+            .write_all(header.as_bytes())
+            .and_then(|()| self.w.write_all(s.as_bytes()));
+        all.map_err(|e| {
             self.error.get_or_insert(e);
             std::fmt::Error
         })
@@ -128,9 +136,10 @@ pub fn obj(
     );
     let text = IoText {
         w: &mut out,
+        header: format!("# {title}\n# {weld}\n"),
         error: None,
     };
-    let mut obj = ObjWriter::new(text, &[&title, &weld]);
+    let mut obj = ObjWriter::new(text, &[]);
     let mut sink = ObjStream {
         tess: StreamTessellator::new(grid, tolerance),
         obj: &mut obj,
@@ -190,6 +199,11 @@ pub fn obj(
     let mut outcome = Outcome::new(Vec::new(), Sink::Stdout);
     if !args.quiet {
         outcome.report = report(name, &summary, Some(&info), naming);
+        outcome.report.push_str(&format!(
+            "  streamed     weld table at most {}, {} waiting for a normal at most\n",
+            count(s.peak_weld, "vertex", "vertices"),
+            count(s.peak_waiting, "vertex or face", "vertices and faces")
+        ));
     }
     Ok(outcome)
 }

@@ -106,11 +106,9 @@ const WHOLE: u8 = 4;
 /// Cell size in tolerances (as [`super::weld`]).
 const CELL: f64 = 32.0;
 
-/// A vertex in the weld table.
+/// A vertex in the weld table (its weld coordinates and cell are those of
+/// `position`: [`weld_coordinates`]).
 struct Slot<R> {
-    /// Its first sample's coordinates in `f64` (`−0` made `+0`).
-    x: [f64; 3],
-    key: [i64; 3],
     /// The next slot of its cell.
     next: u32,
     vertex: u32,
@@ -123,8 +121,6 @@ struct Slot<R> {
     normal: Point3<R>,
     /// Some patch sample (not only hole points) went into it.
     sampled: bool,
-    /// Hole points only: twice the vector area of its faces.
-    area: Point3<R>,
     /// Its normal is final (handed over, or set in the waiting queue).
     done: bool,
     /// Its place in the waiting queue (absolute), when not handed over.
@@ -135,6 +131,11 @@ struct Slot<R> {
 enum Waiting<R> {
     Vertex(Point3<R>, Option<Point3<R>>),
     Face(Face, u32),
+}
+
+/// A point's coordinates in `f64`, `−0` made `+0`: what welding compares.
+fn weld_coordinates<R: Real>(p: Point3<R>) -> [f64; 3] {
+    p.0.map(|c| c.to_f64() + 0.0)
 }
 
 /// An edge used by one face so far.
@@ -153,6 +154,8 @@ pub struct StreamTessellator<R> {
     cells: HashMap<[i64; 3], u32>,
     slots: Vec<Slot<R>>,
     free: Vec<u32>,
+    /// Per slot of hole points only: twice the vector area of its faces.
+    areas: HashMap<u32, Point3<R>>,
     live: usize,
     /// Per sample of the current patch: its slot, turns, pinned.
     local: Vec<u32>,
@@ -182,6 +185,7 @@ impl<R: Real> StreamTessellator<R> {
             cells: HashMap::new(),
             slots: Vec::new(),
             free: Vec::new(),
+            areas: HashMap::new(),
             live: 0,
             local: Vec::new(),
             turns: Vec::new(),
@@ -377,10 +381,10 @@ impl<R: Real> StreamTessellator<R> {
     /// Welds sample `k` of the current patch; returns its slot.
     fn weld(&mut self, k: usize) -> u32 {
         let position = self.raw.positions[k];
-        let x = position.0.map(|c| c.to_f64() + 0.0);
+        let x = weld_coordinates(position);
         let s = match self.find(&x) {
             Some(s) => s,
-            None => self.insert(x, position),
+            None => self.insert(&x, position),
         };
         let new = self.slots[s as usize].vertex == NONE;
         {
@@ -423,7 +427,8 @@ impl<R: Real> StreamTessellator<R> {
         let mut best: Option<u32> = None;
         let mut consider = |s: u32| {
             let slot = &self.slots[s as usize];
-            if (0..3).all(|d| libm::fabs(x[d] - slot.x[d]) <= tol)
+            let y = weld_coordinates(slot.position);
+            if (0..3).all(|d| libm::fabs(x[d] - y[d]) <= tol)
                 && best.is_none_or(|b| slot.vertex < self.slots[b as usize].vertex)
             {
                 best = Some(s);
@@ -467,12 +472,10 @@ impl<R: Real> StreamTessellator<R> {
     }
 
     /// A new slot for a new vertex (its number set by the caller).
-    fn insert(&mut self, x: [f64; 3], position: Point3<R>) -> u32 {
-        let key = self.key(&x);
+    fn insert(&mut self, x: &[f64; 3], position: Point3<R>) -> u32 {
+        let key = self.key(x);
         let head = self.cells.get(&key).copied().unwrap_or(NONE);
         let slot = Slot {
-            x,
-            key,
             next: head,
             vertex: NONE,
             turns: 0,
@@ -481,7 +484,6 @@ impl<R: Real> StreamTessellator<R> {
             position,
             normal: Point3::ZERO,
             sampled: false,
-            area: Point3::ZERO,
             done: false,
             seq: 0,
         };
@@ -504,7 +506,8 @@ impl<R: Real> StreamTessellator<R> {
     /// Takes a slot out of the table; its vertex's normal becomes final.
     fn evict(&mut self, s: u32) {
         self.finalize(s);
-        let key = self.slots[s as usize].key;
+        self.areas.remove(&s);
+        let key = self.key(&weld_coordinates(self.slots[s as usize].position));
         let next = self.slots[s as usize].next;
         let head = self.cells.get(&key).copied().unwrap_or(NONE);
         if head == s {
@@ -542,9 +545,10 @@ impl<R: Real> StreamTessellator<R> {
         let normal = if slot.sampled {
             slot.normal
         } else {
-            let len = slot.area.norm();
+            let area = self.areas.get(&s).copied().unwrap_or(Point3::ZERO);
+            let len = area.norm();
             if len > R::ZERO && len.is_finite() {
-                slot.area * (R::ONE / len)
+                area * (R::ONE / len)
             } else {
                 Point3::ZERO
             }
@@ -575,9 +579,8 @@ impl<R: Real> StreamTessellator<R> {
                 area += a.cross(b);
             }
             for &s in c {
-                let slot = &mut self.slots[s as usize];
-                if !slot.sampled {
-                    slot.area += area;
+                if !self.slots[s as usize].sampled {
+                    *self.areas.entry(s).or_insert(Point3::ZERO) += area;
                 }
             }
         }
