@@ -44,6 +44,21 @@ done
   echo "f 9 12 11 10"; echo "f 13 14 15 16"; echo "f 9 10 14 13"; echo "f 10 11 15 14"; echo "f 11 12 16 15"; echo "f 12 9 13 16"
 } > "$work/two-objects.obj"
 cases+=("$work/two-objects.obj")
+# A textured cube: each face on its own square of a 3x2 atlas (OBJ vt), so
+# the files carry TEXCOORD_0 with seams along every edge.
+{
+  for p in "0 0 0" "1 0 0" "1 1 0" "0 1 0" "0 0 1" "1 0 1" "1 1 1" "0 1 1"; do echo "v $p"; done
+  for f in 0 1 2 3 4 5; do
+    x=$((f % 3)); y=$((f / 3))
+    for c in "0 0" "1 0" "1 1" "0 1"; do
+      set -- $c
+      echo "vt $(echo "($x + $1) / 3" | bc -l) $(echo "($y + $2) / 2" | bc -l)"
+    done
+  done
+  echo "f 1/1 4/2 3/3 2/4"; echo "f 5/5 6/6 7/7 8/8"; echo "f 1/9 2/10 6/11 5/12"
+  echo "f 2/13 3/14 7/15 6/16"; echo "f 3/17 4/18 8/19 7/20"; echo "f 4/21 1/22 5/23 8/24"
+} > "$work/textured-cube.obj"
+cases+=("$work/textured-cube.obj")
 
 step "capdiv surface --format glb|gltf"
 for file in "${cases[@]}"; do
@@ -58,6 +73,8 @@ for file in "${cases[@]}"; do
   [ -s "$work/cases/$name.expect" ] || { echo "no gltf line for $name"; cat "$work/cases/$name.glb.log"; exit 1; }
 done
 echo "first_cube second_cube" >> "$work/cases/two-objects.expect"
+# Third line: the meshes carry UVs.
+printf '\nuv\n' >> "$work/cases/textured-cube.expect"
 
 step "glTF: Khronos validator, three.js in headless chromium"
 (cd scripts/exchange && EXCHANGE_DIR="$work/cases" EXCHANGE_SCREENSHOT="${EXCHANGE_SCREENSHOT:-}" node --test-reporter=spec gltf.test.mjs)

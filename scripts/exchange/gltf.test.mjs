@@ -5,7 +5,8 @@
 // Run by scripts/ci-exchange.sh: EXCHANGE_DIR holds, per case, NAME.glb and
 // NAME.gltf written by `capdiv surface --format glb|gltf`, and NAME.expect,
 // the counts capdiv reported writing: `nodes vertices triangles`, and
-// optionally a second line with the node names the input's objects give.
+// optionally a second line with the node names the input's objects give
+// (may be empty) and a third line `uv` when the meshes carry TEXCOORD_0.
 // Env: CHROMIUM (default /usr/bin/chromium); EXCHANGE_SCREENSHOT=path.png
 // saves the rendering of case EXCHANGE_SCREENSHOT_CASE (default hand.glb).
 import { test } from 'node:test';
@@ -25,9 +26,13 @@ const BACKGROUND = [255, 255, 255];
 const names = (await fs.readdir(DIR)).filter((f) => f.endsWith('.expect')).map((f) => f.slice(0, -7)).sort();
 
 async function expected(name) {
-  const [counts, nodeNames] = (await fs.readFile(path.join(DIR, `${name}.expect`), 'utf8')).split('\n');
+  const [counts, nodeNames, uv] = (await fs.readFile(path.join(DIR, `${name}.expect`), 'utf8')).split('\n');
   const [nodes, vertices, triangles] = counts.trim().split(/\s+/).map(Number);
-  return { nodes, vertices, triangles, names: nodeNames ? nodeNames.trim().split(/\s+/) : null };
+  return {
+    nodes, vertices, triangles,
+    names: nodeNames && nodeNames.trim() ? nodeNames.trim().split(/\s+/) : null,
+    uv: (uv || '').trim() === 'uv',
+  };
 }
 
 test('there are cases', () => {
@@ -75,6 +80,7 @@ window.load = async (url) => {
       stats.triangles += o.geometry.index.count / 3;
       stats.names.push(o.name);
       stats.hasNormals = !!o.geometry.attributes.normal;
+      stats.hasUv = !!o.geometry.attributes.uv;
     }
   });
   const canvas = document.getElementById('view');
@@ -166,6 +172,7 @@ test('three.js GLTFLoader in headless chromium', async (t) => {
           assert.equal(s.vertices, e.vertices);
           assert.equal(s.triangles, e.triangles);
           assert.equal(s.hasNormals, true);
+          assert.equal(s.hasUv, e.uv);
           if (e.names) assert.deepEqual(s.names, e.names);
           // Not blank: the surface covers a good part of the view, lit (many shades).
           assert.ok(s.covered > 0.05, `covered ${s.covered}`);

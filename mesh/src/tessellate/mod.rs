@@ -248,6 +248,9 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     );
 
     // Welding: raw sample → representative sample → compact vertex index.
+    // A vertex split off by a UV seam takes everything but its UV from the
+    // first vertex of its position class (its seam origin): position, normal
+    // and the faces' connectivity are those of the tessellation without UVs.
     let mut index = vec![u32::MAX; samples];
     let mut positions = Vec::new();
     let mut normals = Vec::new();
@@ -257,20 +260,22 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     let mut seam_origin = Vec::new();
     for k in 0..samples {
         let r = rep[k] as usize;
+        // The position class's first sample started a vertex first.
+        let origin = by_position.get(k).map(|&p| p as usize);
         if r == k {
-            index[k] = positions.len() as u32;
-            positions.push(raw_pos[k]);
+            let v = positions.len() as u32;
+            index[k] = v;
+            positions.push(raw_pos[origin.unwrap_or(k)]);
             if let Some(uv) = raw_uvs.get(k) {
                 uvs.push(*uv);
             }
-            if let Some(&p) = by_position.get(k) {
-                // The position class's first sample started a vertex first.
-                seam_origin.push(index[p as usize]);
+            if let Some(o) = origin {
+                seam_origin.push(index[o]);
             }
             normals.push(Point3::ZERO);
             sampled.push(false);
         }
-        let w = index[r] as usize;
+        let w = index[origin.map_or(r, |o| o)] as usize;
         if let Some(n) = raw_nrm[k] {
             sampled[w] = true;
             if normals[w] == Point3::ZERO {
@@ -278,13 +283,14 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
             }
         }
     }
+    let origin_of = |v: u32| seam_origin.get(v as usize).copied().unwrap_or(v);
 
     let mut faces = Vec::with_capacity(raw_faces.len());
     let mut tags = Vec::with_capacity(raw_faces.len());
     let mut degenerate_dropped = 0;
     for (f, tag) in raw_faces.into_iter().zip(raw_tags) {
         let f = f.map(|k| index[rep[k as usize] as usize]);
-        if f.is_degenerate() {
+        if f.map(origin_of).is_degenerate() {
             degenerate_dropped += 1;
         } else {
             faces.push(f);
@@ -295,6 +301,7 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     // Hole points only: area-weighted face normals.
     if sampled.iter().any(|s| !s) {
         for f in &faces {
+            let f = f.map(origin_of);
             let c = f.corners();
             // Twice the vector area of the polygon (Newell), about its first corner.
             let p0 = positions[c[0] as usize];
@@ -319,6 +326,12 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
                     Point3::ZERO
                 };
             }
+        }
+    }
+    // Split vertices: their origin's normal.
+    for (v, &o) in seam_origin.iter().enumerate() {
+        if o as usize != v {
+            normals[v] = normals[o as usize];
         }
     }
 
