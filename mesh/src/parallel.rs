@@ -23,10 +23,11 @@ use capdiv::{Point3, Real};
 use core::ops::Range;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 
 /// Patches per piece (about): enough to outweigh taking a piece, few
 /// enough to balance the threads.
-const PIECE_PATCHES: u64 = 2048;
+const PIECE_PATCHES: u64 = 512;
 
 /// Pieces per thread in a window: the records of a window are held until
 /// the sink has them.
@@ -51,6 +52,9 @@ enum Event<R> {
     Cap(CapRecord<R>),
 }
 
+/// A piece's records and error. The slots of a window are reused by the
+/// windows after it, so their buffers are allocated (and their pages
+/// touched) once, not once per piece.
 struct Done<R> {
     events: Vec<Event<R>>,
     error: Option<EvalError>,
@@ -58,22 +62,22 @@ struct Done<R> {
 
 /// A sink that keeps the records it receives (fallibly: the first
 /// allocation that fails is kept as the piece's error).
-struct Buffer<R> {
-    events: Vec<Event<R>>,
+struct Buffer<'a, R> {
+    events: &'a mut Vec<Event<R>>,
     failed: Option<OutOfMemory>,
 }
 
-impl<R: Clone> Buffer<R> {
+impl<R: Clone> Buffer<'_, R> {
     fn keep(&mut self, e: Event<R>) {
         if self.failed.is_none() {
-            if let Err(oom) = mem::push(&mut self.events, e) {
+            if let Err(oom) = mem::push(self.events, e) {
                 self.failed = Some(oom);
             }
         }
     }
 }
 
-impl<R: Clone> SurfaceSink<R> for Buffer<R> {
+impl<R: Clone> SurfaceSink<R> for Buffer<'_, R> {
     fn patch(&mut self, p: &PatchRecord<R>) {
         self.keep(Event::Patch(p.clone()));
     }
@@ -118,22 +122,25 @@ fn pieces(plan: &SurfacePlan<'_>) -> Result<Vec<Piece>, OutOfMemory> {
     Ok(out)
 }
 
-/// Evaluates `piece` into a buffer, with `scratch` for its caps.
+/// Evaluates `piece` into `done` (emptied first), with `scratch` for its
+/// caps.
 fn run_piece<R: Real>(
     piece: &Piece,
+    done: &mut Done<R>,
     scratch: &mut Scratch<R>,
     work: &[Point3<R>],
     rules: &[FourierRule<'static, R>],
     plan: &SurfacePlan<'_>,
-) -> Done<R> {
+) {
+    done.events.clear();
     let mut buf = Buffer {
-        events: Vec::new(),
+        events: &mut done.events,
         failed: None,
     };
     let mut error = None;
     match piece {
         Piece::Regular(range) => {
-            if let Err(oom) = mem::reserve_exact(&mut buf.events, range.len()) {
+            if let Err(oom) = mem::reserve_exact(buf.events, range.len()) {
                 buf.failed = Some(oom);
             } else {
                 emit_regular(plan, work, range.clone(), &mut buf);
@@ -163,54 +170,47 @@ fn run_piece<R: Real>(
             }
         }
     }
-    Done {
-        events: buf.events,
-        error: buf.failed.map(EvalError::from).or(error),
-    }
+    done.error = buf.failed.map(EvalError::from).or(error);
 }
 
 /// Evaluates the pieces `window` over the scratches (one task each, every
-/// task taking the next piece not yet taken), into `slots` by piece.
+/// task taking the next piece not yet taken), piece `i` into `slots[i]`.
 fn run_window<R: Real + Send + Sync>(
     window: &[Piece],
+    slots: &[Mutex<Done<R>>],
     scratches: &mut [&mut Scratch<R>],
     work: &[Point3<R>],
     rules: &[FourierRule<'static, R>],
     plan: &SurfacePlan<'_>,
-) -> Vec<Option<Done<R>>> {
+) {
     let next = AtomicUsize::new(0);
-    let done: Vec<Vec<(usize, Done<R>)>> = scratches
-        .par_iter_mut()
-        .map(|scratch| {
-            let mut mine = Vec::new();
-            loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                let Some(piece) = window.get(i) else {
-                    break;
-                };
-                mine.push((i, run_piece(piece, scratch, work, rules, plan)));
-            }
-            mine
-        })
-        .collect();
-    let mut slots: Vec<Option<Done<R>>> = (0..window.len()).map(|_| None).collect();
-    for (i, d) in done.into_iter().flatten() {
-        slots[i] = Some(d);
-    }
-    slots
+    scratches.par_iter_mut().for_each(|scratch| loop {
+        let i = next.fetch_add(1, Ordering::Relaxed);
+        let (Some(piece), Some(slot)) = (window.get(i), slots.get(i)) else {
+            break;
+        };
+        // Each slot is taken by one task only: the lock never waits.
+        let mut done = slot.lock().unwrap_or_else(PoisonError::into_inner);
+        run_piece(piece, &mut done, scratch, work, rules, plan);
+    });
 }
 
-/// Hands the records of `slots` to `sink` in order; the first piece's
-/// error ends it, as it ends the one-thread evaluation.
-fn emit<R>(slots: Vec<Option<Done<R>>>, sink: &mut dyn SurfaceSink<R>) -> Result<(), EvalError> {
-    for d in slots.into_iter().flatten() {
+/// Hands the records of the first `len` slots to `sink` in order; the
+/// first piece's error ends it, as it ends the one-thread evaluation.
+fn emit<R>(
+    slots: &mut [Mutex<Done<R>>],
+    len: usize,
+    sink: &mut dyn SurfaceSink<R>,
+) -> Result<(), EvalError> {
+    for slot in &mut slots[..len] {
+        let d = slot.get_mut().unwrap_or_else(PoisonError::into_inner);
         for e in &d.events {
             match e {
                 Event::Patch(p) => sink.patch(p),
                 Event::Cap(c) => sink.cap(c),
             }
         }
-        if let Some(e) = d.error {
+        if let Some(e) = d.error.take() {
             return Err(e);
         }
     }
@@ -263,22 +263,35 @@ impl<R: Real + Send + Sync> Evaluator<R> {
         let mut scratches: Vec<&mut Scratch<R>> = mem::with_capacity(threads)?;
         scratches.push(&mut self.scratch);
         scratches.extend(self.extra.iter_mut().take(threads - 1));
-        let mut windows = pieces.chunks(PIECES_PER_THREAD * threads);
+        let per_window = PIECES_PER_THREAD * threads;
+        let slots = || -> Result<Vec<Mutex<Done<R>>>, OutOfMemory> {
+            let mut v = mem::with_capacity(per_window)?;
+            v.resize_with(per_window, || {
+                Mutex::new(Done {
+                    events: Vec::new(),
+                    error: None,
+                })
+            });
+            Ok(v)
+        };
+        let (mut ready, mut next) = (slots()?, slots()?);
+        let mut windows = pieces.chunks(per_window);
         let Some(first) = windows.next() else {
             return Ok(());
         };
-        let mut ready = run_window(first, &mut scratches, work, rules, plan);
+        run_window(first, &ready, &mut scratches, work, rules, plan);
+        let mut ready_len = first.len();
         for window in windows {
             // The next window is evaluated while this thread emits the last.
-            let mut next = Vec::new();
             let emitted = rayon::in_place_scope(|scope| {
-                let (scratches, next) = (&mut scratches, &mut next);
-                scope.spawn(move |_| *next = run_window(window, scratches, work, rules, plan));
-                emit(core::mem::take(&mut ready), sink)
+                let (scratches, next) = (&mut scratches, &next);
+                scope.spawn(move |_| run_window(window, next, scratches, work, rules, plan));
+                emit(&mut ready, ready_len, sink)
             });
             emitted?;
-            ready = next;
+            core::mem::swap(&mut ready, &mut next);
+            ready_len = window.len();
         }
-        emit(ready, sink)
+        emit(&mut ready, ready_len, sink)
     }
 }
