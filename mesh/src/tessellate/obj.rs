@@ -47,7 +47,7 @@ pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[St
 }
 
 /// `keyword x y z` and a newline, each number by [`write_number`].
-pub fn write_point<R: Display + LowerExp + Copy>(text: &mut String, keyword: &str, p: [R; 3]) {
+pub fn write_point<R: Real + Display + LowerExp>(text: &mut String, keyword: &str, p: [R; 3]) {
     text.push_str(keyword);
     for x in p {
         text.push(' ');
@@ -65,18 +65,28 @@ pub fn write_point<R: Display + LowerExp + Copy>(text: &mut String, keyword: &st
 /// `-0.000000000000046053215007904947`, `0.25` instead of `2.5e-1`. Every
 /// OBJ reader that parses numbers with `strtod` (or Rust's `parse`) reads
 /// both.
-pub fn write_number<R: Display + LowerExp>(text: &mut String, x: R) {
+///
+/// For `1e-3 ≤ |x| < 1e7` the exponent form is not formatted at all: it is
+/// never chosen there. A positional form longer than 8 characters then has
+/// a fractional part (an integer below 1e7 takes at most sign and 7
+/// digits), so it is the `n` significant digits, one point and at most
+/// `0.00` before them; the exponent form has the same digits, a point
+/// unless `n = 1`, and at least `e-` or `e` and one exponent digit, never
+/// fewer characters.
+pub fn write_number<R: Real + Display + LowerExp>(text: &mut String, x: R) {
     let start = text.len();
     let _ = write!(text, "{x}");
     let positional = text.len() - start;
-    // The exponent form is at most as long as the mantissa digits plus
-    // `e-NNN`; try it only when the positional form is long.
-    if positional > 8 {
-        let mut exp = String::new();
-        let _ = write!(exp, "{x:e}");
-        if exp.len() < positional {
-            text.truncate(start);
-            text.push_str(&exp);
+    let a = x.to_f64().abs();
+    if positional > 8 && !(1e-3..1e7).contains(&a) {
+        // Written right after the positional form (no temporary string),
+        // then the longer of the two removed.
+        let mid = text.len();
+        let _ = write!(text, "{x:e}");
+        if text.len() - mid < positional {
+            text.replace_range(start..mid, "");
+        } else {
+            text.truncate(mid);
         }
     }
 }
@@ -85,8 +95,10 @@ pub fn write_number<R: Display + LowerExp>(text: &mut String, x: R) {
 mod tests {
     use super::write_number;
     use alloc::string::String;
+    use capdiv::Real;
+    use core::fmt::Write;
 
-    fn number<R: core::fmt::Display + core::fmt::LowerExp>(x: R) -> String {
+    fn number<R: Real + core::fmt::Display + core::fmt::LowerExp>(x: R) -> String {
         let mut s = String::new();
         write_number(&mut s, x);
         s
@@ -119,6 +131,50 @@ mod tests {
                 assert!(s.len() <= 15, "{s}");
             }
             x *= 7.77;
+        }
+    }
+
+    /// The notation rule itself, both forms formatted: positional unless it
+    /// is longer than 8 characters and the exponent form is shorter.
+    fn by_the_rule<R: core::fmt::Display + core::fmt::LowerExp + Copy>(x: R) -> String {
+        let (mut p, mut e) = (String::new(), String::new());
+        let _ = write!(p, "{x}");
+        let _ = write!(e, "{x:e}");
+        if p.len() > 8 && e.len() < p.len() {
+            e
+        } else {
+            p
+        }
+    }
+
+    #[test]
+    fn skipping_the_exponent_form_between_1e_minus_3_and_1e7_changes_nothing() {
+        // Around both ends of the skipped range and across it, with many
+        // and few digits, both signs, in f64 and f32.
+        let mut values = alloc::vec::Vec::new();
+        for base in [1e-3, 1e7, 1e8, 1.0, 0.01, 0.1, 1e6, 123456.0] {
+            for k in -3i32..=3 {
+                let b: f64 = base;
+                values.push(b * (1.0 + f64::from(k) * f64::EPSILON));
+                values.push(b * (1.0 + f64::from(k) * 1e-9));
+            }
+        }
+        let mut x = 1.234_567_890_123_456_7e-6f64;
+        while x < 1e11 {
+            values.extend([
+                x,
+                x * 0.999_999_999_999_9,
+                x.round(),
+                (x * 1e3).round() / 1e3,
+            ]);
+            x *= 1.37;
+        }
+        for v in values {
+            for v in [v, -v] {
+                assert_eq!(number(v), by_the_rule(v), "{v:e}");
+                let f = v as f32;
+                assert_eq!(number(f), by_the_rule(f), "{f:e}");
+            }
         }
     }
 }
