@@ -37,13 +37,15 @@ fn surface_out_of_memory_is_one_line_and_exit_2() {
     // 7,200 triangles: about 90 MB of analysis; at depth 12 (every cap
     // to that depth) the 1.6 million patches the pretty-printed JSON output
     // (built whole, not streamed) holds need about 750 MB more. The limit
-    // leaves room for the analysis, not for the patches.
+    // leaves room for the analysis, not for the patches. One thread: the
+    // evaluation threads' stacks would count against the limit by the
+    // machine's core count.
     std::fs::write(&input, triangle_torus(60)).unwrap();
     let output = dir.path().join("out.json");
     let bin = env!("CARGO_BIN_EXE_capdiv");
     let script = format!(
         "ulimit -v 900000 && exec '{bin}' surface '{}' --depth 12 --tolerance none \
-         --max-patches 100000000 --format json --pretty -o '{}'",
+         --max-patches 100000000 --threads 1 --format json --pretty -o '{}'",
         s(&input),
         s(&output)
     );
