@@ -1,5 +1,5 @@
 /*
- * capdiv from C (issue 9): refines the sample polar net (C²PS steps, pole
+ * capdiv from C: refines the sample polar net (C²PS steps, pole
  * jet) and the sample EG c-nets (steps, ring patches) through capdiv.h, in
  * float and double, and prints every input and output over semihosting as
  * the hex bits of the numbers, one line per call:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sizes of the C firmware (issue 9): .text/.rodata/.data/.bss of the images
+# Sizes of the C firmware: .text/.rodata/.data/.bss of the images
 # (m4, m0: every call of the header; m4-f32, m0-f32: the float calls only)
 # (arm-none-eabi-size) and the stack high-water mark of a run under QEMU,
 # as a markdown table (also written to cfirmware/build/size-report.md),

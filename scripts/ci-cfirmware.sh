@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The C firmware checks of issue 9, for CI and by hand. Installs what it needs
+# The C firmware checks, for CI and by hand. Installs what it needs
 # on a fresh Debian machine, then:
 #   1. capi/include/capdiv.h is what cbindgen generates from capi/src (capi/header);
 #   2. fmt and clippy of capi/, capi/header/ and embedded-tests/ with the test;

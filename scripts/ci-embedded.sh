@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The embedded checks of issue 4, for CI and by hand (called from
+# The embedded checks, for CI and by hand (called from
 # scripts/test.sh, which .ci/run runs). Installs what it needs on a fresh
 # machine, then:
 #   1. the kernel for thumbv6m-none-eabi and, with `defmt`, thumbv7em-none-eabihf;

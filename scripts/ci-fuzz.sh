@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bounded fuzzing for CI (issue 10): builds the cargo-fuzz targets in fuzz/
+# Bounded fuzzing for CI: builds the cargo-fuzz targets in fuzz/
 # and runs each for a short time on its committed seed corpus. Fails on any
 # crash, panic, timeout or out-of-memory.
 #

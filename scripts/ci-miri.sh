@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The kernel's (package capdiv) unit, integration and doc tests under Miri
-# (issue 10), bounded.
+# The kernel's (package capdiv) unit, integration and doc tests under Miri,
+# bounded.
 #
 #   bash scripts/ci-miri.sh
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Streaming C²PS (issue 9) checks that scripts/ci-embedded.sh does not cover:
+# Streaming C²PS checks that scripts/ci-embedded.sh does not cover:
 # fmt and clippy of the firmware's `c2ps-stream` feature (thumbv6m), its
 # release link with `api-check` (the link-time panic check of the whole
 # streaming API, f32 and f64), and the Cortex-M0 run against the f64 kernel

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The browser viewer's checks (issue 8), for CI and by hand. Installs what it
+# The browser viewer's checks, for CI and by hand. Installs what it
 # needs on a fresh Debian machine (chromium and node from apt, the wasm32
 # target, playwright-core by `npm ci`), then:
 #   1. fmt, clippy and host tests of the WASM crate (viewer/wasm, own workspace);

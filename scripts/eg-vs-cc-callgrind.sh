@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Instructions per step, EG against Catmull-Clark, counted by callgrind
-# (reproducible on a noisy machine; issue 9 "EG speed").
+# (reproducible on a noisy machine).
 #
 #   bash scripts/eg-vs-cc-callgrind.sh [REPS]
 #

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Lists the panic paths left in the firmware's release build, for when the
-# link-time check (the unlinkable panic handler, issue 4) fails: builds with
+# link-time check (the unlinkable panic handler) fails: builds with
 # the diagnosis feature `linkable-panic`, disassembles, and prints every call
 # into core's panic functions with the function it sits in and the nearest
 # source line the debug info gives (inlined code: an approximation).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Size report and budgets (issue 4). Builds the firmware (release profile:
+# Size report and budgets. Builds the firmware (release profile:
 # opt-level "s", LTO, f32) for several feature sets and targets, reads
 # .text/.rodata/.data/.bss with llvm-size, runs each image under QEMU for its
 # stack high-water mark (the firmware paints its stack and reports the mark),
@@ -61,9 +61,9 @@ for c in "${configs[@]}"; do
   figure[$name.data]=$data
   figure[$name.bss]=$bss
   figure[$name.stack]=$stack
-  # Streaming C²PS (issue 9): its RAM, .bss plus stack, must stay within 8 KiB.
+  # Streaming C²PS: its RAM, .bss plus stack, must stay within 8 KiB.
   [ "$name" = m0-c2ps-stream ] && figure[$name.ram]=$((bss + stack))
-  # Both schemes in one f32 firmware (issue 9): .text + .rodata under 32 KiB.
+  # Both schemes in one f32 firmware: .text + .rodata under 32 KiB.
   [ "$name" = m4-c2ps-eg ] && figure[$name.flash]=$((text + rodata))
   rows+=("| $name | $target | $features | $text | $rodata | $data | $bss | $stack |")
 done
