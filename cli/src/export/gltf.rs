@@ -88,10 +88,11 @@ pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Document {
         vertices += part.positions.len();
         triangles += part.indices.len() / 3;
         let (min, max) = bounds(&part.positions);
-        let position = push_attribute(&mut root, &mut bin, buffer, &part.positions, min, max);
-        let normal = push_attribute(&mut root, &mut bin, buffer, &part.normals, None, None);
-        let texcoord =
-            (!part.uvs.is_empty()).then(|| push_vec2(&mut root, &mut bin, buffer, &part.uvs));
+        use json::accessor::Type::{Vec2, Vec3};
+        let position = push_attribute(&mut root, &mut bin, buffer, &part.positions, Vec3, min, max);
+        let normal = push_attribute(&mut root, &mut bin, buffer, &part.normals, Vec3, None, None);
+        let texcoord = (!part.uvs.is_empty())
+            .then(|| push_attribute(&mut root, &mut bin, buffer, &part.uvs, Vec2, None, None));
         let indices = push_indices(&mut root, &mut bin, buffer, &part.indices);
         let mut attributes = BTreeMap::from([
             (Valid(json::mesh::Semantic::Positions), position),
@@ -269,12 +270,13 @@ fn bounds(p: &[[f32; 3]]) -> (Option<json::Value>, Option<json::Value>) {
 }
 
 /// Appends `data` to the buffer as a view (target `ARRAY_BUFFER`) and a
-/// `FLOAT` `VEC3` accessor.
-fn push_attribute(
+/// `FLOAT` accessor of type `kind` (`VEC2` for `N = 2`, `VEC3` for 3).
+fn push_attribute<const N: usize>(
     root: &mut json::Root,
     bin: &mut Vec<u8>,
     buffer: json::Index<json::Buffer>,
-    data: &[[f32; 3]],
+    data: &[[f32; N]],
+    kind: json::accessor::Type,
     min: Option<json::Value>,
     max: Option<json::Value>,
 ) -> json::Index<json::Accessor> {
@@ -296,40 +298,9 @@ fn push_attribute(
         view,
         data.len(),
         json::accessor::ComponentType::F32,
-        json::accessor::Type::Vec3,
+        kind,
         min,
         max,
-    )
-}
-
-/// Appends `data` as a view (`ARRAY_BUFFER`) and a `FLOAT` `VEC2` accessor.
-fn push_vec2(
-    root: &mut json::Root,
-    bin: &mut Vec<u8>,
-    buffer: json::Index<json::Buffer>,
-    data: &[[f32; 2]],
-) -> json::Index<json::Accessor> {
-    let offset = bin.len();
-    for v in data {
-        for x in v {
-            bin.extend_from_slice(&x.to_le_bytes());
-        }
-    }
-    let view = push_view(
-        root,
-        buffer,
-        offset,
-        bin.len() - offset,
-        json::buffer::Target::ArrayBuffer,
-    );
-    push_accessor(
-        root,
-        view,
-        data.len(),
-        json::accessor::ComponentType::F32,
-        json::accessor::Type::Vec2,
-        None,
-        None,
     )
 }
 
