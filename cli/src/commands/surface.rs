@@ -373,23 +373,19 @@ impl<R> Collect<R> {
     }
 }
 
-/// Pushes `x`, growing `list` fallibly; the bytes asked for when refused.
-fn try_push<T: Clone>(list: &mut Vec<T>, x: &T) -> Result<(), usize> {
-    list.try_reserve(1)
-        .map_err(|_| list.len().saturating_mul(2).max(1) * core::mem::size_of::<T>())?;
-    list.push(x.clone());
-    Ok(())
-}
-
 impl<R: Clone> SurfaceSink<R> for Collect<R> {
     fn patch(&mut self, p: &PatchRecord<R>) {
         if self.refused.is_none() {
-            self.refused = try_push(&mut self.patches, p).err();
+            self.refused = capdiv_mesh::mem::push(&mut self.patches, p.clone())
+                .err()
+                .map(|e| e.bytes);
         }
     }
     fn cap(&mut self, c: &CapRecord<R>) {
         if self.refused.is_none() {
-            self.refused = try_push(&mut self.caps, c).err();
+            self.refused = capdiv_mesh::mem::push(&mut self.caps, c.clone())
+                .err()
+                .map(|e| e.bytes);
         }
     }
 }
