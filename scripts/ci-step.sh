@@ -18,7 +18,8 @@
 # Env: STEP_DEPTH (default 4; the hand runs one less); STEP_SCREENSHOT=path.png
 # renders the mushroom's file as OpenCascade reads it (scripts/exchange/
 # render_step.py; docs/img/step-occ.png is STEP_DEPTH=3). Prints its run time
-# and `N passed, N failed`.
+# and `N passed, N failed`. `bash scripts/ci-step.sh --install` only
+# installs (CI prefetches with it).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -30,6 +31,7 @@ venv=${STEP_VENV:-${HOME:-/tmp}/.cache/capdiv/step-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet --disable-pip-version-check cadquery-ocp==8.0.1.1.0
 py="$venv/bin/python"
+[ "${1:-}" != --install ] || exit 0
 
 step "build the CLI"
 cargo build --quiet --release -p capdiv-cli
