@@ -1,5 +1,5 @@
 /*
- * The README's example (README.md, "C firmware"), compiled by `make` so that
+ * The example of docs/c-abi.md, compiled by `make` so that
  * it stays right: a C²PS cap and an EG ring through capdiv.h, float calls.
  */
 #include <stddef.h>

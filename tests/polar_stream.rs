@@ -6,7 +6,7 @@
 //! Tolerances, relative to the level-0 configuration's bounding-box size `s`:
 //! f64 `1e-12·s` (the bound; the two paths differ only in rounding:
 //! closed-form vs summed 1-link sums, rotated vs doubled roots); f32 `1e-6·s`,
-//! the f32 bound stated in docs/verification.md (*Accuracy*: f32 vs f64 at depth 8, of the
+//! the f32 bound stated in docs/accuracy.md (*Accuracy*: f32 vs f64 at depth 8, of the
 //! level-0 box).
 //!
 //! Not run under Miri (`scripts/ci-miri.sh`): streaming to depth 20 and the
@@ -194,7 +194,7 @@ fn f32_equals_in_place_within_the_f32_bound() {
 }
 
 /// f32 streamed against the f64 in-place path: the same bound as the in-place
-/// f32 kernel (docs/verification.md, *Accuracy*, 1e-6 of the level-0 box at depth 8).
+/// f32 kernel (docs/accuracy.md, *Accuracy*, 1e-6 of the level-0 box at depth 8).
 #[test]
 fn f32_stream_is_within_the_bound_of_f64() {
     for (n, count) in [(6, 5), (3, 7)] {

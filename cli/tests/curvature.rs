@@ -101,7 +101,7 @@ fn inner_edge() {
 /// Analytic quadrics. (1) C²PS reproduces rotationally symmetric quadratics
 /// at the pole (docs/math/c2ps.md §4, p3 = A − q00): a sampled paraboloid
 /// `z = (x²+y²)/2` has K = H = 1 at the pole, to rounding. (2) A sampled
-/// saddle `z = (x²−y²)/2` limits to 1.5× that (p4 = 3 C2, docs/verification.md, "Where the
+/// saddle `z = (x²−y²)/2` limits to 1.5× that (p4 = 3 C2, docs/accuracy.md, "Where the
 /// spec does not hold"): K = −2.25, H = 0. (3) A valence-4 c-net is regular:
 /// EG and Catmull-Clark both give the bicubic B-spline of the sampled
 /// paraboloid, which reproduces quadratics up to a constant shift in z: every

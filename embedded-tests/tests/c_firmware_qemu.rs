@@ -20,7 +20,7 @@
 //! The same `main.c` is also built as a program for this machine (`make
 //! host`: `cfirmware/host.c` instead of the startup and semihosting code,
 //! the host's `cc` and the host build of the staticlib with the link line of
-//! `docs/embedded.md`) and checked the same way, as a board of the M4's
+//! `docs/c-abi.md`) and checked the same way, as a board of the M4's
 //! depths without a stack measurement.
 //!
 //! Needs `arm-none-eabi-gcc` and `qemu-system-arm` (`scripts/ci-cfirmware.sh`

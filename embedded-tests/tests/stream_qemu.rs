@@ -30,7 +30,7 @@ const LIMIT: Duration = Duration::from_secs(300);
 const U: f64 = 1.0 / (1u64 << 24) as f64;
 
 /// Bounding-box size of the level-0 data (all 7 links: the firmware streams
-/// links 1..5, but the box of all is what the bound in docs/verification.md is relative to
+/// links 1..5, but the box of all is what the bound in docs/accuracy.md is relative to
 /// at most; using the larger box is the looser, stated choice).
 fn size() -> f64 {
     let mut lo = POLE;
@@ -110,7 +110,7 @@ fn cortex_m0_streams_depth_12_like_the_f64_kernel() {
         "{lines:#?}"
     );
 
-    // Tolerance: every control point is within the f32 bound of docs/verification.md
+    // Tolerance: every control point is within the f32 bound of docs/accuracy.md
     // (1e-6 of the level-0 box) of f64; the means add the rounding of the
     // plain 16-point patch sums (≤ 15u of the largest coordinate per point)
     // and of the compensated sums and scaling (a few u of the mean).

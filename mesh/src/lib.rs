@@ -59,6 +59,12 @@
 
 extern crate alloc;
 
+/// The README's Rust examples (the kernel's and this crate's), compiled and
+/// run as doctests so that they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeExamples;
+
 pub mod adaptive;
 pub mod caps;
 pub mod chart;

@@ -1,4 +1,4 @@
-//! The numeric contract of the kernel (docs/verification.md, "Numeric contract") through
+//! The numeric contract of the kernel (docs/accuracy.md, "Numeric contract") through
 //! whole meshes: sample meshes scaled to huge (up to `MAX`), tiny, subnormal
 //! and mixed magnitudes, evaluated in f64 and f32. Every evaluation either
 //! returns an error or emits only finite patches and caps — never a NaN or an

@@ -1,6 +1,6 @@
 //! A file the user drops on the page, to a mesh: Wavefront OBJ (read by
 //! [`capdiv_mesh::obj::parse_obj`]) or JSON in the CLI's formats
-//! (`cli/README.md`): `{"kind": "mesh", "vertices", "faces"}`, or
+//! (`docs/cli.md`): `{"kind": "mesh", "vertices", "faces"}`, or
 //! `{"kind": "polar", "pole", "links"}` shown as the open disk it spans (a fan
 //! of triangles from the pole to link 1, quads between consecutive links).
 //! Anything else is an error with a one-line message for the page; nothing
