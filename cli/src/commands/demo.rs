@@ -157,9 +157,13 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     );
     s += &w(
         "limit point",
-        format!("{} (pole q00 = {})", fmt3(&jet.limit), fmt3(&input.pole)),
+        format!(
+            "{} (pole q00 = {})",
+            point_6_digits(&jet.limit),
+            point_6_digits(&input.pole)
+        ),
     );
-    s += &w("normal", fmt3(&jet.normal));
+    s += &w("normal", point_6_digits(&jet.normal));
     s += &w(
         "Gaussian curvature",
         compare(jet.gaussian_curvature, a.gaussian),
@@ -169,8 +173,8 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
         "principal curv.",
         format!(
             "{:.6}, {:.6}",
-            tidy(jet.principal_curvatures[0]),
-            tidy(jet.principal_curvatures[1])
+            zero_below_6_digits(jet.principal_curvatures[0]),
+            zero_below_6_digits(jet.principal_curvatures[1])
         ),
     );
     s += &w("note", sample.note.to_string());
@@ -236,8 +240,8 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
         "limit point",
         format!(
             "{} (c0 by (3); center node e = {})",
-            fmt3(&c0),
-            fmt3(&sample.input.center)
+            point_6_digits(&c0),
+            point_6_digits(&sample.input.center)
         ),
     );
     s += &w(
@@ -384,13 +388,14 @@ fn times(compute: std::time::Duration, total: std::time::Duration) -> String {
     )
 }
 
-fn fmt3(p: &[f64; 3]) -> String {
-    let [x, y, z] = p.map(tidy);
+/// A point with 6 decimals per coordinate.
+fn point_6_digits(p: &[f64; 3]) -> String {
+    let [x, y, z] = p.map(zero_below_6_digits);
     format!("[{x:.6}, {y:.6}, {z:.6}]")
 }
 
 /// Round-off below the printed digits shown as 0 (not `-0.000000`).
-fn tidy(v: f64) -> f64 {
+fn zero_below_6_digits(v: f64) -> f64 {
     if v.abs() < 5e-7 {
         0.0
     } else {
@@ -408,7 +413,7 @@ fn compare(got: f64, want: f64) -> String {
     };
     format!(
         "{:.6} at the limit; the sampled surface has {:.6}{ratio}",
-        tidy(got),
-        tidy(want)
+        zero_below_6_digits(got),
+        zero_below_6_digits(want)
     )
 }
