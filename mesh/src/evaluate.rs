@@ -15,7 +15,7 @@ use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
 use crate::hole;
 use crate::mem;
-use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan};
+use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan, Unit};
 use crate::tessellate::PatchGeometry;
 use alloc::boxed::Box;
 use alloc::format;
@@ -315,7 +315,9 @@ impl<R: Real> Evaluator<R> {
         }
     }
 
-    /// Evaluates the surface for `positions` (one per input vertex).
+    /// Evaluates the surface for `positions` (one per input vertex): the
+    /// regular patches and caps in [`SurfacePlan::order`], each cap's
+    /// patches followed by its record.
     pub fn evaluate<'t>(
         &mut self,
         plan: &SurfacePlan<'t>,
@@ -323,16 +325,14 @@ impl<R: Real> Evaluator<R> {
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
         self.prepare(plan, positions, |s, src, out| s.apply(src, out))?;
-        emit_regular(plan, &self.work, 0..plan.regular.len(), sink);
-        for (index, p) in plan.polar.iter().enumerate() {
-            let work = &self.work;
-            self.scratch.polar_cap(work, plan, p, index as u32, sink)?;
-        }
-        let base = plan.polar.len() as u32;
-        for (index, e) in plan.ev.iter().enumerate() {
-            let (work, rules) = (&self.work, &self.eg_rules);
-            self.scratch
-                .ev_cap(work, rules, plan, e, base + index as u32, sink)?;
+        for &unit in &plan.order {
+            match unit {
+                Unit::Regular(i) => emit_regular(plan, &self.work, i as usize, sink),
+                Unit::Cap(index) => {
+                    self.scratch
+                        .cap(&self.work, &self.eg_rules, plan, index, sink)?;
+                }
+            }
         }
         Ok(())
     }
@@ -403,15 +403,15 @@ pub(crate) fn polar_need<R: Real>(plan: &SurfacePlan<'_>) -> Result<usize, EvalE
     Ok(need)
 }
 
-/// The patches of the regular faces `range` of `plan`, in order.
+/// The patch of regular face `index` of `plan`.
 pub(crate) fn emit_regular<R: Real>(
     plan: &SurfacePlan<'_>,
     work: &[Point3<R>],
-    range: core::ops::Range<usize>,
+    index: usize,
     sink: &mut dyn SurfaceSink<R>,
 ) {
     let level0 = plan.steps.len() as u32;
-    for r in &plan.regular[range] {
+    if let Some(r) = plan.regular.get(index) {
         let mut d = [[Point3::ZERO; 4]; 4];
         for (i, row) in d.iter_mut().enumerate() {
             for (j, p) in row.iter_mut().enumerate() {
@@ -441,6 +441,26 @@ pub(crate) fn emit_regular<R: Real>(
 }
 
 impl<R: Real> Scratch<R> {
+    /// Emits cap `index` (numbered as in [`PatchRecord::cap`]), gathering
+    /// from the working points.
+    pub(crate) fn cap(
+        &mut self,
+        work: &[Point3<R>],
+        eg_rules: &[FourierRule<'static, R>],
+        plan: &SurfacePlan<'_>,
+        index: u32,
+        sink: &mut dyn SurfaceSink<R>,
+    ) -> Result<(), EvalError> {
+        let polar = plan.polar.len();
+        match plan.polar.get(index as usize) {
+            Some(p) => self.polar_cap(work, plan, p, index, sink),
+            None => match plan.ev.get(index as usize - polar) {
+                Some(e) => self.ev_cap(work, eg_rules, plan, e, index, sink),
+                None => Ok(()),
+            },
+        }
+    }
+
     /// Emits polar cap `index` (`p`), gathering from the working points.
     pub(crate) fn polar_cap(
         &mut self,

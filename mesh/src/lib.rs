@@ -95,6 +95,6 @@ pub use input::{
     VertexCorner,
 };
 pub use mem::OutOfMemory;
-pub use plan::{PlanOptions, Scheme, SurfacePlan};
+pub use plan::{PlanOptions, Scheme, SurfacePlan, Unit};
 pub use stencil::{Primvar, StencilTable};
 pub use topology::Topology;

@@ -5,7 +5,7 @@
 //!
 //! The refinement steps are applied in blocks of rows, one block per task
 //! (each row is computed as on one thread). The patches and caps are cut
-//! into pieces (runs of regular faces, runs of caps) of similar work; the
+//! into pieces (runs of [`SurfacePlan::order`]) of similar work; the
 //! pieces of a window are evaluated by one task per thread, each with its
 //! own cap buffers, taking the next piece as it finishes one; the calling
 //! thread meanwhile hands the previous window's records to the sink in
@@ -15,7 +15,7 @@ extern crate std;
 
 use crate::evaluate::{emit_regular, polar_need, EvalError, Scratch};
 use crate::mem::{self, OutOfMemory};
-use crate::plan::SurfacePlan;
+use crate::plan::{SurfacePlan, Unit};
 use crate::{CapRecord, Evaluator, PatchRecord, StencilTable, SurfaceSink};
 use alloc::vec::Vec;
 use capdiv::eg::FourierRule;
@@ -36,15 +36,8 @@ const PIECES_PER_THREAD: usize = 4;
 /// Rows of a refinement step per task.
 const STENCIL_BLOCK: usize = 4096;
 
-/// A part of the surface, in the order [`Evaluator::evaluate`] emits it.
-#[derive(Clone, Debug)]
-enum Piece {
-    /// Regular faces (indices into `plan.regular`).
-    Regular(Range<usize>),
-    /// Caps (polar caps first, then EG and Catmull-Clark caps, as indexed in
-    /// [`PatchRecord::cap`]).
-    Caps(Range<usize>),
-}
+/// A part of the surface: a run of [`SurfacePlan::order`].
+type Piece = Range<usize>;
 
 /// What a piece gave: its records, and the error that stopped it.
 enum Event<R> {
@@ -86,38 +79,36 @@ impl<R: Clone> SurfaceSink<R> for Buffer<'_, R> {
     }
 }
 
-/// The pieces of `plan`, in emission order.
+/// The pieces of `plan`, in emission order: runs of [`SurfacePlan::order`]
+/// of about [`PIECE_PATCHES`] patches.
 fn pieces(plan: &SurfacePlan<'_>) -> Result<Vec<Piece>, OutOfMemory> {
-    let mut out = Vec::new();
-    let regular = plan.regular.len();
-    let step = PIECE_PATCHES as usize;
-    for a in (0..regular).step_by(step) {
-        mem::push(&mut out, Piece::Regular(a..(a + step).min(regular)))?;
-    }
     let depth = u64::from(plan.options.depth);
     let levels = 1u64
         .checked_shl(plan.options.depth)
         .map_or(u64::MAX, |p| p - 1);
-    // Patches of each cap, as counted by `SurfacePlan::patch_count`.
-    let polar = plan
-        .polar
-        .iter()
-        .map(|p| 4u64.saturating_mul(p.valence as u64).saturating_mul(levels));
-    let ev = plan.ev.iter().map(|e| {
-        3u64.saturating_mul(e.sectors.len() as u64)
-            .saturating_mul(depth)
-    });
-    let (mut start, mut weight) = (0, 0u64);
-    for (i, w) in polar.chain(ev).enumerate() {
-        weight = weight.saturating_add(w.max(1));
-        if weight >= PIECE_PATCHES {
-            mem::push(&mut out, Piece::Caps(start..i + 1))?;
-            (start, weight) = (i + 1, 0);
+    let polar = plan.polar.len();
+    // Patches of each unit, as counted by `SurfacePlan::patch_count`.
+    let weight = |u: Unit| match u {
+        Unit::Regular(_) => 1,
+        Unit::Cap(i) => match plan.polar.get(i as usize) {
+            Some(p) => 4u64.saturating_mul(p.valence as u64).saturating_mul(levels),
+            None => plan.ev.get(i as usize - polar).map_or(1, |e| {
+                3u64.saturating_mul(e.sectors.len() as u64)
+                    .saturating_mul(depth)
+            }),
+        },
+    };
+    let mut out = Vec::new();
+    let (mut start, mut sum) = (0, 0u64);
+    for (i, &u) in plan.order.iter().enumerate() {
+        sum = sum.saturating_add(weight(u).max(1));
+        if sum >= PIECE_PATCHES {
+            mem::push(&mut out, start..i + 1)?;
+            (start, sum) = (i + 1, 0);
         }
     }
-    let caps = plan.polar.len() + plan.ev.len();
-    if start < caps {
-        mem::push(&mut out, Piece::Caps(start..caps))?;
+    if start < plan.order.len() {
+        mem::push(&mut out, start..plan.order.len())?;
     }
     Ok(out)
 }
@@ -138,36 +129,18 @@ fn run_piece<R: Real>(
         failed: None,
     };
     let mut error = None;
-    match piece {
-        Piece::Regular(range) => {
-            if let Err(oom) = mem::reserve_exact(buf.events, range.len()) {
-                buf.failed = Some(oom);
-            } else {
-                emit_regular(plan, work, range.clone(), &mut buf);
-            }
-        }
-        Piece::Caps(range) => {
-            let polar = plan.polar.len();
-            for index in range.clone() {
-                let result = match plan.polar.get(index) {
-                    Some(p) => scratch.polar_cap(work, plan, p, index as u32, &mut buf),
-                    None => scratch.ev_cap(
-                        work,
-                        rules,
-                        plan,
-                        &plan.ev[index - polar],
-                        index as u32,
-                        &mut buf,
-                    ),
-                };
-                if let Err(e) = result {
+    for &unit in &plan.order[piece.clone()] {
+        match unit {
+            Unit::Regular(i) => emit_regular(plan, work, i as usize, &mut buf),
+            Unit::Cap(index) => {
+                if let Err(e) = scratch.cap(work, rules, plan, index, &mut buf) {
                     error = Some(e);
                     break;
                 }
-                if buf.failed.is_some() {
-                    break;
-                }
             }
+        }
+        if buf.failed.is_some() {
+            break;
         }
     }
     done.error = buf.failed.map(EvalError::from).or(error);

@@ -190,6 +190,16 @@ pub struct EvPlan {
     pub level: u32,
 }
 
+/// One entry of [`SurfacePlan::order`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Unit {
+    /// The patch of [`SurfacePlan::regular`]`[i]`.
+    Regular(u32),
+    /// Cap `i`, numbered as in [`crate::PatchRecord::cap`]: the polar caps
+    /// first, then [`SurfacePlan::ev`].
+    Cap(u32),
+}
+
 /// A face without a patch.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UncoveredFace {
@@ -220,6 +230,17 @@ pub struct SurfacePlan<'t> {
     pub polar: Vec<PolarPlan>,
     /// EG and Catmull-Clark caps.
     pub ev: Vec<EvPlan>,
+    /// The order [`crate::Evaluator::evaluate`] emits the regular patches
+    /// and caps in, each once: first the regular faces and caps of the
+    /// analysed level (the module doc's rules 1–3), by the input face they
+    /// lie in, the input faces taken breadth first across their edges (one
+    /// connected part after the other, each from its lowest-numbered face),
+    /// a face's regular patches before the caps first reached at it; then
+    /// the patches of the adaptive refinement and its caps, in plan order.
+    /// So the surface grows as a front from a seed face, and the boundary
+    /// between the patches given and those to come (what a streaming
+    /// welder holds) is about that front, not the whole surface.
+    pub order: Vec<Unit>,
     /// Faces left without a patch (input faces, each once).
     pub uncovered: Vec<UncoveredFace>,
     /// Input faces that needed refinement, with the first reason found:
@@ -245,6 +266,41 @@ pub struct SurfacePlan<'t> {
     pub hole_conflicts: usize,
     /// Options.
     pub options: PlanOptions<'t>,
+}
+
+/// Per input face, its place in a breadth-first walk across the edges of
+/// `topo` (each connected part from its lowest-numbered face); the identity
+/// without a topology of `faces` faces.
+fn face_ranks(topo: Option<&Topology>, faces: usize) -> Result<Vec<u32>, MeshError> {
+    let Some(t) = topo.filter(|t| t.num_faces() == faces) else {
+        return Ok(mem::collect(0..faces as u32)?);
+    };
+    let mut rank = mem::filled(faces, NONE)?;
+    // The faces in walk order (the queue of the walk).
+    let mut walk: Vec<u32> = mem::with_capacity(faces)?;
+    for seed in 0..faces {
+        if rank[seed] != NONE {
+            continue;
+        }
+        rank[seed] = walk.len() as u32;
+        walk.push(seed as u32);
+        let mut head = walk.len() - 1;
+        while let Some(&f) = walk.get(head) {
+            head += 1;
+            for k in 0..t.face_len(f as usize) {
+                let tw = t.twin(t.face_half_edge(f as usize, k));
+                if tw == NONE {
+                    continue;
+                }
+                let g = t.face_of(tw) as usize;
+                if rank[g] == NONE {
+                    rank[g] = walk.len() as u32;
+                    walk.push(g as u32);
+                }
+            }
+        }
+    }
+    Ok(rank)
 }
 
 /// A regular face's control grid as the analysis found it: vertices only
@@ -410,6 +466,7 @@ impl<'t> SurfacePlan<'t> {
             regular: Vec::new(),
             polar: Vec::new(),
             ev: Vec::new(),
+            order: Vec::new(),
             uncovered: Vec::new(),
             needed_refinement: needed,
             last_holes: Vec::new(),
@@ -440,6 +497,9 @@ impl<'t> SurfacePlan<'t> {
             mem::reserve(&mut plan.ev, pass.ev.len())?;
             plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
         }
+        // Patches and caps of the analysed level (the adaptive refinement's
+        // come after them).
+        let analysed = (plan.regular.len(), plan.ev.len());
         // Every other face: adaptive refinement over the analysed level
         // (its base level built only when some face needs it).
         if pass.uncovered.iter().any(Option::is_some) {
@@ -459,7 +519,46 @@ impl<'t> SurfacePlan<'t> {
             )?;
             plan.push_adaptive(&base, &roots, &cap_face)?;
         }
+        plan.order = plan.emission_order(topo, analysed)?;
         Ok(plan)
+    }
+
+    /// [`Self::order`]: `analysed` counts the regular patches and EG /
+    /// Catmull-Clark caps of the analysed level (the first of
+    /// [`Self::regular`] and [`Self::ev`]); `topo` is the input's topology,
+    /// if it has one (without it, faces are taken in input order).
+    fn emission_order(
+        &self,
+        topo: Option<&Topology>,
+        analysed: (usize, usize),
+    ) -> Result<Vec<Unit>, MeshError> {
+        let rank = face_ranks(topo, self.input_faces)?;
+        let rank_of = |f: u32| rank.get(f as usize).copied().unwrap_or(NONE);
+        let polar = self.polar.len();
+        let mut keyed: Vec<(u32, Unit)> = mem::with_capacity(analysed.0 + polar + analysed.1)?;
+        for (i, r) in self.regular[..analysed.0].iter().enumerate() {
+            keyed.push((rank_of(r.chart.face), Unit::Regular(i as u32)));
+        }
+        for (i, p) in self.polar.iter().enumerate() {
+            let faces = p.triangles.iter().copied();
+            let key = faces
+                .chain(p.quads.iter().map(|q| q.face))
+                .map(rank_of)
+                .min();
+            keyed.push((key.unwrap_or(NONE), Unit::Cap(i as u32)));
+        }
+        for (i, e) in self.ev[..analysed.1].iter().enumerate() {
+            let key = e.sectors.iter().map(|s| rank_of(s.face)).min();
+            keyed.push((key.unwrap_or(NONE), Unit::Cap((polar + i) as u32)));
+        }
+        keyed.sort_unstable();
+        let total = self.regular.len() + polar + self.ev.len();
+        let mut order = mem::with_capacity(total)?;
+        order.extend(keyed.into_iter().map(|(_, u)| u));
+        drop(rank);
+        order.extend((analysed.0..self.regular.len()).map(|i| Unit::Regular(i as u32)));
+        order.extend((polar + analysed.1..polar + self.ev.len()).map(|i| Unit::Cap(i as u32)));
+        Ok(order)
     }
 
     /// The fast path's patches and caps: regular faces of the analysed level,

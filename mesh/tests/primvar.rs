@@ -9,7 +9,7 @@ use capdiv::Point3;
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
     samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan,
-    SurfaceSink,
+    SurfaceSink, Unit,
 };
 
 /// Meshes whose plans have refinement steps (the triangle and pentagon
@@ -126,7 +126,12 @@ fn positions_as_a_primvar_make_the_evaluators_regular_patches() {
             .unwrap();
         let work = p.refine_primvar(&m.vertices).unwrap();
         assert_eq!(sink.0.len(), p.regular.len(), "{name}");
-        for (r, rec) in p.regular.iter().zip(&sink.0) {
+        // The evaluator gives them in the plan's emission order.
+        let emitted = p.order.iter().filter_map(|u| match *u {
+            Unit::Regular(i) => Some(&p.regular[i as usize]),
+            Unit::Cap(_) => None,
+        });
+        for (r, rec) in emitted.zip(&sink.0) {
             let d: [[Point3<f64>; 4]; 4] = std::array::from_fn(|i| {
                 std::array::from_fn(|j| Point3(work[r.gather[4 * i + j] as usize]))
             });

@@ -11,7 +11,7 @@ use capdiv_mesh::tessellate::{
     StreamTessellator, TessPatch, TessellatingSink, Tessellation,
 };
 use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
+    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Unit,
 };
 
 /// Every patch and cap, in the evaluator's order.
@@ -265,6 +265,104 @@ fn weld_table_does_not_grow_with_the_depth() {
         );
         // Output waits only within one cap's last ring.
         assert!(deep.1.peak_waiting < deep.0.positions.len() / 4, "{name}");
+    }
+}
+
+/// A torus of `2·k²` triangles: every vertex of valence 6, so a cap at
+/// every vertex and every face centre.
+fn triangle_torus(k: usize) -> MeshInput {
+    let mut vertices = Vec::new();
+    for i in 0..k {
+        let a = std::f64::consts::TAU * i as f64 / k as f64;
+        for j in 0..k {
+            let b = std::f64::consts::TAU * j as f64 / k as f64;
+            let r = 3.0 + b.cos();
+            vertices.push([r * a.cos(), r * a.sin(), b.sin()]);
+        }
+    }
+    let at = |i: usize, j: usize| ((i % k) * k + j % k) as u32;
+    let mut faces = Vec::new();
+    for i in 0..k {
+        for j in 0..k {
+            faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            faces.push(vec![at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    MeshInput::new(vertices, faces)
+}
+
+/// The evaluator's order (regular patches and caps interleaved, by input
+/// face) keeps the weld table to a front: a torus with four times the
+/// faces (and output) holds at most about twice the vertices, the front
+/// being about as long as the torus is wide. Emitting every cap after
+/// every regular patch held the boundary of every cap (a fifth of the
+/// vertices here, growing with the mesh).
+#[test]
+fn weld_table_grows_with_the_front_not_the_mesh() {
+    let run = |k: usize| {
+        let mesh = triangle_torus(k);
+        let (t, s) = streamed(&patches(&mesh, 2), 2, weld_tolerance(&mesh));
+        assert!(s.closed.is_ok(), "k = {k}: {:?}", s.closed);
+        (t.positions.len(), s.peak_weld)
+    };
+    let (small, big) = (run(12), run(24));
+    assert!(big.0 >= 4 * small.0 - 16, "{small:?} {big:?}");
+    assert!(
+        big.1 <= small.1 * 5 / 2,
+        "weld table {} for {} vertices, {} for {}",
+        big.1,
+        big.0,
+        small.1,
+        small.0
+    );
+    assert!(big.1 * 10 < big.0, "{big:?}");
+}
+
+/// [`SurfacePlan::order`] lists every regular patch and every cap once, and
+/// the evaluator gives each cap's record after its patches.
+#[test]
+fn the_emission_order_gives_every_patch_and_cap_once() {
+    for (name, mesh) in meshes() {
+        let plan = plan(&mesh, 2);
+        let caps = plan.polar.len() + plan.ev.len();
+        let mut regular = vec![0; plan.regular.len()];
+        let mut cap = vec![0; caps];
+        for u in &plan.order {
+            match *u {
+                Unit::Regular(i) => regular[i as usize] += 1,
+                Unit::Cap(i) => cap[i as usize] += 1,
+            }
+        }
+        assert!(regular.iter().all(|&c| c == 1), "{name}: {regular:?}");
+        assert!(cap.iter().all(|&c| c == 1), "{name}: {cap:?}");
+
+        /// Checks that no patch of a cap comes after that cap's record.
+        #[derive(Default)]
+        struct Order {
+            ended: Vec<u32>,
+            late: usize,
+            regular: usize,
+        }
+        impl SurfaceSink<f64> for Order {
+            fn patch(&mut self, p: &PatchRecord<f64>) {
+                match p.cap {
+                    Some(c) => self.late += usize::from(self.ended.contains(&c)),
+                    None => self.regular += 1,
+                }
+            }
+            fn cap(&mut self, c: &CapRecord<f64>) {
+                self.ended.push(c.index);
+            }
+        }
+        let mut sink = Order::default();
+        let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+        ev.evaluate(&plan, &mesh.vertices, &mut sink)
+            .expect("evaluate");
+        assert_eq!(sink.late, 0, "{name}");
+        assert_eq!(sink.regular, plan.regular.len(), "{name}");
+        let mut ended = sink.ended.clone();
+        ended.sort_unstable();
+        assert_eq!(ended, (0..caps as u32).collect::<Vec<_>>(), "{name}");
     }
 }
 

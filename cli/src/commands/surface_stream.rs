@@ -1,7 +1,8 @@
 //! `capdiv surface` written as it is produced: `--format obj` (f64) through
 //! the streaming tessellator ([`StreamTessellator`]), `--format json`
 //! (compact) patch by patch. Peak memory is the input, its plan and the
-//! weld front, not the output. The output is the collected one's
+//! weld front (the open edges between the input faces done and those to
+//! come, in the evaluator's breadth-first order), not the output. The output is the collected one's
 //! ([`super::surface`]): OBJ with the same vertices, normals and faces in
 //! the same order (faces follow their vertices instead of all coming last;
 //! the counts and closedness come as comments at the end), JSON byte for

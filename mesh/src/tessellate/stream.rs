@@ -22,13 +22,17 @@
 //! surface's boundary (until [`StreamTessellator::finish`]), and the
 //! corners of a cap's last hole and the hole's point, whose fans span an
 //! angle of the hole's shape: they stay until the group of patches they
-//! belong to ends (a cap's patches, or the patches of no cap, which the
-//! evaluator gives before every cap).
+//! belong to ends (a cap's patches, or a run of patches of no cap).
 //!
 //! So the table holds the open edges between the patches done and the
-//! patches to come: for a [`crate::Evaluator`]'s order, the boundaries
-//! between the regular patches and the caps still to come (proportional to
-//! the input mesh) and one cap's rings.
+//! patches to come, and the surface's boundary. A [`crate::Evaluator`]
+//! gives the regular patches and caps by input face, the faces taken
+//! breadth first ([`crate::SurfacePlan::order`]): the open edges are those
+//! of a front of input faces (for a mesh of `F` faces about `√F` of them)
+//! and one cap's rings, not the surface behind it. (The adaptive
+//! refinement's patches, around tags and irregular points without a cap,
+//! come after the rest, in one run, and its caps after them: the runs'
+//! hole corners need every patch around them before their run ends.)
 //!
 //! A vertex is handed to the sink once its normal is final: at once when its
 //! first sample has a normal (`∂u × ∂v` not zero), otherwise when it leaves
