@@ -13,10 +13,9 @@
 //!   memory;
 //! - [`output`]: the serialisable output types and the all-or-nothing writers
 //!   (stdout, or a file written through a temporary file and a rename);
-//! - [`mesh`]: tessellation of Bézier patches into a quad mesh;
-//! - [`obj`]: the mesh as Wavefront OBJ text;
 //! - [`export`]: exchange formats of a whole surface (glTF 2.0, STEP);
-//! - [`render`]: the mesh as a shaded PNG preview;
+//! - [`render`]: a tessellation (`capdiv_mesh::tessellate`) as a shaded PNG
+//!   preview;
 //! - [`picture`]: shapes shaded per pixel from the exact patches (highlight
 //!   lines, curvature maps with legends), one panel per scheme;
 //! - [`camera`]: the pictures' view (azimuth, elevation, up axis) and its
@@ -40,9 +39,7 @@ pub mod export;
 pub mod focus;
 pub mod glyphs;
 pub mod input;
-pub mod mesh;
 pub mod net;
-pub mod obj;
 pub mod output;
 pub mod picture;
 pub mod render;

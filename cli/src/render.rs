@@ -1,17 +1,18 @@
-//! PNG preview of a [`Mesh`]: a small software rasteriser (orthographic view
+//! PNG preview of a [`Tessellation`]: a small software rasteriser (orthographic view
 //! from above at an angle, z-buffer, per-pixel Lambert shading of the
 //! interpolated normals, 2×2 supersampling), encoded with the `png` crate.
 //!
-//! Quads are coloured by the level of their patch, alternating warm (even
+//! Faces are coloured by their tag (the level of their patch), alternating warm (even
 //! levels, [`EVEN`]) and cool (odd levels, [`ODD`]), so the rings of the
 //! subdivision show; the back side is grey. A legend in the bottom margin
 //! says so ([`RING_LEGEND`]). Patch boundaries are drawn as thin dark lines
-//! where a patch is large enough on screen (more than [`MIN_LINE_PATCH`]
-//! pixels). Only for looking at results: no claim of accuracy.
+//! where the caller gives each vertex's patch parameters and a patch is
+//! large enough on screen (more than [`MIN_LINE_PATCH`] pixels). Only for
+//! looking at results: no claim of accuracy.
 
 use crate::camera::{Camera, Up};
-use crate::mesh::Mesh;
 use crate::Scalar;
+use capdiv_mesh::tessellate::{Face, Tessellation};
 
 /// Camera and image size.
 #[derive(Clone, Copy, Debug)]
@@ -89,8 +90,13 @@ fn unit(a: V3) -> Option<V3> {
     (l > 0.0 && l.is_finite()).then(|| a.map(|c| c / l))
 }
 
-/// Renders `mesh` as seen from `view`.
-pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
+/// Renders `mesh` as seen from `view`; with `params`, per vertex the
+/// parameters `(u, v)` of its patch, patch boundaries are drawn.
+pub fn render<R: Scalar>(
+    mesh: &Tessellation<R>,
+    params: Option<&[[f64; 2]]>,
+    view: &View,
+) -> Image {
     const SS: usize = 2;
     let (w, h) = (view.width.max(1) * SS, view.height.max(1) * SS);
     // `toward`: from the scene to the camera; `right`, `up`: screen axes.
@@ -151,9 +157,14 @@ pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
 
     let mut depth = vec![f64::NEG_INFINITY; w * h];
     let mut color = vec![BACKGROUND.map(f64::from); w * h];
-    for (q, &tag) in mesh.quads.iter().zip(&mesh.tags) {
+    for (f, &tag) in mesh.faces.iter().zip(&mesh.tags) {
         let base = if tag % 2 == 0 { EVEN } else { ODD }.map(f64::from);
-        for tri in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+        let tris = match *f {
+            Face::Tri(t) => [Some(t), None],
+            Face::Quad(q) => [Some([q[0], q[1], q[2]]), Some([q[0], q[2], q[3]])],
+        };
+        for tri in tris.into_iter().flatten() {
+            let tri = tri.map(|i| i as usize);
             let face = unit(cross(
                 sub(pos[tri[1]], pos[tri[0]]),
                 sub(pos[tri[2]], pos[tri[0]]),
@@ -167,7 +178,7 @@ pub fn render<R: Scalar>(mesh: &Mesh<R>, view: &View) -> Image {
             }
             // Screen-space gradients of u and v (constant on the triangle),
             // for boundary lines of constant width in pixels.
-            let uv = tri.map(|i| mesh.uv.get(i).copied().unwrap_or([0.5; 2]));
+            let uv = tri.map(|i| params.and_then(|p| p.get(i)).copied().unwrap_or([0.5; 2]));
             let grad = |c: usize| {
                 let (d1, d2) = (uv[1][c] - uv[0][c], uv[2][c] - uv[0][c]);
                 let gx = (d1 * (s[2][1] - s[0][1]) - d2 * (s[1][1] - s[0][1])) / area;

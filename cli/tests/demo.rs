@@ -75,8 +75,9 @@ fn demo_writes_its_files_and_summary() {
             }
         }
         assert!(faces > 0);
-        // 5×5 vertices and 4×4 quads per patch.
-        assert_eq!(v * 16, faces * 25, "{name}");
+        // Welded: the rings around the open hole (and the outer region)
+        // make one annulus, with no crack or T-junction between rings.
+        assert_welded_annulus(&parse_obj(&obj), name);
         // PNG: decodes, 800×600 RGB, and the surface covers a good part of it.
         let png = std::fs::read(out.join(format!("{name}.png"))).unwrap();
         let (w, h, rgb) = decode_png(&png);
@@ -122,11 +123,15 @@ fn demo_writes_its_files_and_summary() {
             section.contains(&shown),
             "{name}: limit {shown} not in summary"
         );
-        let obj = std::fs::read_to_string(out.join(format!("{name}.obj"))).unwrap();
-        assert_eq!(
-            obj.lines().filter(|l| l.starts_with("f ")).count(),
-            24 * n * 16
-        );
+        // 8 rings of 3n patches, 4×4 cells each; in rings 1..=7, pieces 0
+        // and 1 (2n patches) meet the next ring along one edge, whose 4
+        // cells become 3 triangles each (fans from the midpoints).
+        let obj = parse_obj(&std::fs::read_to_string(out.join(format!("{name}.obj"))).unwrap());
+        let loops = assert_welded_annulus(&obj, name);
+        assert_eq!(loops[0], n * 2 * 4, "{name}: the hole's edges");
+        let tris = obj.f.iter().filter(|f| f.len() == 3).count();
+        assert_eq!(tris, 7 * 2 * n * 4 * 3);
+        assert_eq!(obj.f.len() - tris, 24 * n * 16 - 7 * 2 * n * 4);
     }
     // The saddle's curvature line compares two surfaces and says so; its
     // note says the difference is expected.

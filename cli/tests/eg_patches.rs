@@ -160,7 +160,7 @@ fn dnet_inputs_and_valence_4_have_rings_too() {
 }
 
 #[test]
-fn obj_is_well_formed_interpolates_corners_and_faces_follow_the_normals() {
+fn obj_is_welded_interpolates_corners_and_faces_follow_the_normals() {
     let dir = tempdir();
     let (center, sectors) = cnet(3, 50);
     let file = write_json(dir.path(), "c.json", &cnet_json(center, &sectors));
@@ -187,22 +187,30 @@ fn obj_is_well_formed_interpolates_corners_and_faces_follow_the_normals() {
         let text = run.stdout_str();
         assert!(text.contains("18 bi-4 Bézier patches in rings of levels 1..=2"));
         let obj = parse_obj(&text);
-        let side = grid + 1;
-        assert_eq!(obj.v.len(), ps.len() * side * side);
         assert_eq!(obj.vn.len(), obj.v.len());
-        assert_eq!(obj.f.len(), ps.len() * grid * grid);
-        for (k, p) in ps.iter().enumerate() {
-            let first = k * side * side;
-            assert_eq!(obj.v[first], p[0][0], "patch {k} corner (0,0)");
-            assert_eq!(
-                obj.v[first + side * side - 1],
-                p[4][4],
-                "patch {k} corner (1,1)"
-            );
+        // Welded, ring meeting ring without a T-junction: an annulus whose
+        // inner loop is the hole [0, 2^-2]² of each of the 3 sectors (two
+        // edges of `grid` segments each).
+        let loops = assert_welded_annulus(&obj, &format!("grid {grid}"));
+        assert_eq!(loops[0], 3 * 2 * grid);
+        // Ring 1's pieces 0 and 1 (2n patches) meet ring 2 along one edge
+        // each: its `grid` cells become 3 triangles each (fans from the
+        // midpoints); every other cell is a quad.
+        let tris = obj.f.iter().filter(|f| f.len() == 3).count();
+        let quads = obj.f.iter().filter(|f| f.len() == 4).count();
+        assert_eq!(tris, 2 * 3 * grid * 3);
+        assert_eq!(quads, ps.len() * grid * grid - 2 * 3 * grid);
+        // A Bézier patch interpolates its corners; a welded vertex holds
+        // the first of its samples (the patches sharing it agree to
+        // rounding).
+        for p in &ps {
+            for corner in [p[0][0], p[4][0], p[4][4], p[0][4]] {
+                assert!(has_vertex(&obj, &corner, 1e-12), "corner {corner:?}");
+            }
         }
         for face in &obj.f {
             let v: Vec<[f64; 3]> = face.iter().map(|&(a, _)| obj.v[a - 1]).collect();
-            let (a, b) = (sub(v[1], v[0]), sub(v[3], v[0]));
+            let (a, b) = (sub(v[1], v[0]), sub(v[v.len() - 1], v[0]));
             let cr = [
                 a[1] * b[2] - a[2] * b[1],
                 a[2] * b[0] - a[0] * b[2],

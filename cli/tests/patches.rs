@@ -119,11 +119,12 @@ fn outer_region_meets_ring_zero() {
 }
 
 #[test]
-fn obj_is_well_formed_and_interpolates_patch_corners() {
+fn obj_is_welded_and_interpolates_patch_corners() {
     let dir = tempdir();
     let (pole, links) = config(5, 7, 2);
     let file = write_json(dir.path(), "in.json", &polar_json(pole, &links));
     let ps = patches(&["patches", "--depth", "2", s(&file)]);
+    let n = 5;
     for grid in [1usize, 3, 4] {
         let g = grid.to_string();
         let run = capdiv(
@@ -141,12 +142,9 @@ fn obj_is_well_formed_and_interpolates_patch_corners() {
         );
         run.assert_ok();
         let obj = parse_obj(&run.stdout_str());
-        let side = grid + 1;
-        assert_eq!(obj.v.len(), ps.len() * side * side);
         assert_eq!(obj.vn.len(), obj.v.len());
-        assert_eq!(obj.f.len(), ps.len() * grid * grid);
         for face in &obj.f {
-            assert_eq!(face.len(), 4);
+            assert!(face.len() == 3 || face.len() == 4);
             for &(a, b) in face {
                 assert!(a >= 1 && a <= obj.v.len() && a == b, "index {a}//{b}");
             }
@@ -155,13 +153,21 @@ fn obj_is_well_formed_and_interpolates_patch_corners() {
             let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
             assert!((len - 1.0).abs() < 1e-12, "unit normal {n:?}");
         }
-        // A Bézier patch interpolates its corner control points: vertex
-        // (0,0) of patch i is points[0], vertex (grid,grid) is points[15].
-        for (i, p) in ps.iter().enumerate() {
+        // Welded: shared patch edges are one, ring meets ring without a
+        // T-junction. The open boundary is the outer region's edge and the
+        // hole's: the inner edges of ring 2's span 0, n·2^2 patches of
+        // `grid` segments.
+        let loops = assert_welded_annulus(&obj, &format!("grid {grid}"));
+        assert!(loops.contains(&(n * 4 * grid)), "boundary loops {loops:?}");
+        // Fewer vertices than samples: every shared edge is stored once.
+        let side = grid + 1;
+        assert!(obj.v.len() < ps.len() * side * side);
+        // A Bézier patch interpolates its corner control points.
+        for p in &ps {
             let pts: Vec<[f64; 3]> = p["points"].as_array().unwrap().iter().map(p3).collect();
-            let first = i * side * side;
-            assert!(diff(&obj.v[first], &pts[0]) < 1e-12);
-            assert!(diff(&obj.v[first + side * side - 1], &pts[15]) < 1e-12);
+            for c in [0, 3, 12, 15] {
+                assert!(has_vertex(&obj, &pts[c], 1e-12), "corner {:?}", pts[c]);
+            }
         }
     }
 }

@@ -18,6 +18,7 @@
 
 use super::patches::{collect, collect_eg, png_bytes};
 use super::pole::pole;
+use super::surface::WELD_F64;
 use super::Outcome;
 use crate::args::DemoArgs;
 use crate::camera::Up;
@@ -128,9 +129,10 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let jet = pole::<f64>(name, input)?;
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.to_mesh(DEMO_GRID);
-    let obj = set.to_obj(&mesh, DEMO_GRID, &title);
-    let png = png_bytes(&mesh, Up::Z)?;
+    let mesh = set.tessellate(DEMO_GRID, WELD_F64);
+    let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
+    let drawn = set.tessellate_with_parameters(DEMO_GRID, WELD_F64);
+    let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -139,7 +141,7 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
         &png,
         input,
         "polar",
-        (mesh.positions.len(), mesh.quads.len()),
+        (mesh.positions.len(), mesh.faces.len()),
     )?;
     let total = start.elapsed();
 
@@ -196,9 +198,10 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let set = collect_eg::<f64>(name, &input, sample.depth, None)?;
     let c0 = super::eg::dnet::<f64>(name, &input)?.c0().0;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.to_mesh(DEMO_GRID);
-    let obj = set.to_obj(&mesh, DEMO_GRID, &title);
-    let png = png_bytes(&mesh, Up::Z)?;
+    let mesh = set.tessellate(DEMO_GRID, WELD_F64);
+    let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
+    let drawn = set.tessellate_with_parameters(DEMO_GRID, WELD_F64);
+    let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -207,7 +210,7 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
         &png,
         &sample.input,
         "cnet",
-        (mesh.positions.len(), mesh.quads.len()),
+        (mesh.positions.len(), mesh.faces.len()),
     )?;
     let total = start.elapsed();
 
@@ -272,13 +275,13 @@ fn one_mesh(
     dir: &Path,
     text: &mut String,
 ) -> Result<(), CliError> {
-    use super::surface::{build, closed_text, obj_text, render_mesh, tessellate_surface, WELD_F64};
+    use super::surface::{build, closed_text, obj_text, tessellate_surface, WELD_F64};
     let start = Instant::now();
     let surface = build::<f64>(name, mesh, MESH_DEPTH, &[], "f64")?;
     let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None);
     let title = format!("capdiv demo: {name}, {what}");
     let obj = obj_text(&tess, &surface.summary, &title);
-    let png = png_bytes(&render_mesh(&tess.mesh), Up::Z)?;
+    let png = png_bytes(&tess.mesh, None, Up::Z)?;
     let compute = start.elapsed();
     let obj_path = dir.join(format!("{name}.obj"));
     write_path(&obj_path, obj.as_bytes())?;
@@ -360,7 +363,7 @@ fn write_files<T: serde::Serialize>(
     png: &[u8],
     input: &T,
     kind: &str,
-    (vertices, quads): (usize, usize),
+    (vertices, faces): (usize, usize),
 ) -> Result<String, CliError> {
     let obj_path = dir.join(format!("{name}.obj"));
     write_path(&obj_path, obj.as_bytes())?;
@@ -373,7 +376,7 @@ fn write_files<T: serde::Serialize>(
     }
     write_path(&json_path, &to_json(&json_input, false))?;
     Ok(format!(
-        "{} ({vertices} vertices, {quads} quads), {}, {}",
+        "{} ({vertices} vertices, {faces} faces, welded), {}, {}",
         obj_path.display(),
         png_path.display(),
         json_path.display()

@@ -1,6 +1,8 @@
 //! `capdiv patches`: the Bézier patches through ring M, as JSON, as an OBJ
-//! mesh or as a PNG preview. The patch set, its mesh and its OBJ are generic
-//! over the patch size `K` (bicubic C²PS, bi-quartic EG).
+//! mesh or as a PNG preview. The patch set is generic over the patch size
+//! `K` (bicubic C²PS, bi-quartic EG); OBJ and PNG are its welded
+//! tessellation by `capdiv_mesh::tessellate` (the edges a ring shares with
+//! the next ring marked finer: [`inner_edges`]), as `surface` makes them.
 //!
 //! **EG** (`cnet`/`dnet`, docs/math/eg.md §9): the rings of steps 1..M, `3n`
 //! bi-4 patches each (`"degree": 4`, 25 points), `level` = the step that
@@ -27,24 +29,32 @@
 //! span), so memory does not grow with the depth: the sweep's state is
 //! fixed (depth ≤ [`STREAM_MAX_DEPTH`]) and nothing is collected. The patches
 //! equal the in-place ones to rounding (f64: 1e-12 of the input's size; f32:
-//! 1e-6). All checks run before the first byte is written; a file output is
+//! 1e-6); OBJ goes through the streaming weld ([`StreamTessellator`]): the
+//! in-place output's vertices and faces in the same order, each face after
+//! its vertices, the counts as the last comment line. All checks run before the first byte is written; a file output is
 //! written aside and renamed at the end, so an error leaves no partial file.
 
 use super::eg::{read_table, subdivision};
 use super::polar::Config;
+use super::surface::{WELD_F32, WELD_F64};
+use super::surface_stream::IoText;
 use super::Outcome;
 use crate::args::{FirstStepArg, PatchFormat, PatchesArgs, Precision};
 use crate::camera::Up;
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
-use crate::mesh::Mesh;
 use crate::net::{valence_after, NetStorage};
-use crate::obj::to_obj;
 use crate::output::{indent, temporary_sibling, to_json, LeveledPatch, PatchOutput, Sink, Target};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
+use crate::text::{count, sig};
 use crate::Scalar;
-use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions};
+use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions, TensorPatch};
+use capdiv_mesh::tessellate::{
+    edge_bit, tessellate, write_obj, ObjWriter, PatchGeometry, StreamTessellator, TessPatch,
+    Tessellation, EDGE_U0, EDGE_V0,
+};
+use capdiv_mesh::PatchUv;
 use std::io::Write;
 
 /// The patches of a configuration through some depth, `K×K` control points
@@ -59,32 +69,139 @@ pub struct PatchSet<R, const K: usize> {
     pub rings: Vec<(u32, usize)>,
     /// Valence at the deepest level.
     pub valence: usize,
+    /// The largest extent of the input net's bounding box, which holds
+    /// every patch (the weld tolerance is relative to it).
+    pub size: f64,
 }
 
-impl<R: Scalar, const K: usize> PatchSet<R, K> {
+impl<R: Scalar, const K: usize> PatchSet<R, K>
+where
+    TensorPatch<R, K>: Into<PatchGeometry<R>>,
+{
     /// One-line description for OBJ headers and the demo.
     pub fn describe(&self) -> String {
         describe(self.patches.len(), self.outer, &self.rings, K)
     }
 
-    /// Tessellates the patches, `grid` segments per side, tagged by level.
-    pub fn to_mesh(&self, grid: usize) -> Mesh<R> {
-        Mesh::from_patches(self.patches.iter().map(|p| (p.level, &p.patch)), grid)
+    /// The patches as the tessellator takes them, tagged by level, each
+    /// ring's edges that the next ring meets marked finer
+    /// ([`inner_edges`]).
+    pub fn tess_patches(&self) -> Vec<TessPatch<R>> {
+        let mut finer = vec![0u8; self.outer];
+        for (r, &(_, len)) in self.rings.iter().enumerate() {
+            let last = r + 1 == self.rings.len();
+            finer.extend((0..len).map(|j| if last { 0 } else { inner_edges(K, j, len) }));
+        }
+        self.patches
+            .iter()
+            .zip(finer)
+            .map(|(p, finer)| TessPatch {
+                finer,
+                ..TessPatch::new(p.patch.into(), p.level)
+            })
+            .collect()
     }
 
-    /// OBJ text of the tessellated patches.
-    pub fn to_obj(&self, mesh: &Mesh<R>, grid: usize, title: &str) -> String {
-        let header = [
-            title.to_string(),
-            self.describe(),
-            format!(
-                "each patch sampled on a {grid}x{grid} grid: {} vertices, {} quads; \
-                 vertices on shared patch edges are duplicated (not welded)",
-                mesh.positions.len(),
-                mesh.quads.len()
-            ),
-        ];
-        to_obj(mesh, &header)
+    /// The welded tessellation, `grid` segments per patch side, samples
+    /// within `factor ×` [`PatchSet::size`] merged.
+    pub fn tessellate(&self, grid: usize, factor: f64) -> Tessellation<R> {
+        tessellate(self.tess_patches(), grid, R::from_f64(factor * self.size))
+    }
+
+    /// The tessellation with each patch's own parameters `(u, v)` as texture
+    /// coordinates, so vertices are split along patch edges and carry the
+    /// parameters of their patch (the PNG preview draws patch boundaries
+    /// from them).
+    pub fn tessellate_with_parameters(&self, grid: usize, factor: f64) -> Tessellation<R> {
+        let square = PatchUv {
+            corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            hole: [0.0, 0.0],
+        };
+        let patches = self.tess_patches().into_iter().map(|p| TessPatch {
+            uv: Some(square),
+            ..p
+        });
+        tessellate(patches, grid, R::from_f64(factor * self.size))
+    }
+
+    /// OBJ text of the welded tessellation `tess`.
+    pub fn to_obj(&self, tess: &Tessellation<R>, grid: usize, factor: f64, title: &str) -> String {
+        let mut header = obj_header(title, self.describe(), grid, factor, self.size).to_vec();
+        let triangles = tess.faces.iter().filter(|f| f.corners().len() == 3).count();
+        header.push(counts_line(
+            tess.positions.len(),
+            triangles,
+            tess.faces.len() - triangles,
+        ));
+        write_obj(tess, &header)
+    }
+}
+
+/// The edges of ring patch `j` (of `len` in its ring) that the next ring
+/// meets, each one against two patches of half its size (bits as
+/// [`edge_bit`]): for C²PS (`k = 4`) the inner edge `u = 0` of span 0
+/// (patches `0..len/2`), for EG (`k = 5`) edge `u = 0` of piece 0 and edge
+/// `v = 0` of piece 1 (patch `3s + piece` of sector `s`; see the module doc).
+pub fn inner_edges(k: usize, j: usize, len: usize) -> u8 {
+    match k {
+        4 if j < len / 2 => edge_bit(EDGE_U0),
+        5 if j.is_multiple_of(3) => edge_bit(EDGE_U0),
+        5 if j % 3 == 1 => edge_bit(EDGE_V0),
+        _ => 0,
+    }
+}
+
+/// The OBJ header of a patch set: title, description, grid and weld
+/// tolerance (the counts follow: [`counts_line`]).
+fn obj_header(title: &str, describe: String, grid: usize, factor: f64, size: f64) -> [String; 3] {
+    [
+        title.to_string(),
+        describe,
+        format!(
+            "grid {grid}x{grid} per patch; welded within {} ({} x bounding-box size {}); \
+             the hole around the centre stays open",
+            sig(factor * size, 3),
+            sig(factor, 3),
+            sig(size, 6)
+        ),
+    ]
+}
+
+/// The OBJ comment line with the welded mesh's counts.
+fn counts_line(vertices: usize, triangles: usize, quads: usize) -> String {
+    format!(
+        "{}, {} ({}, {})",
+        count(vertices, "vertex", "vertices"),
+        count(triangles + quads, "face", "faces"),
+        count(triangles, "triangle", "triangles"),
+        count(quads, "quad", "quads"),
+    )
+}
+
+/// The weld tolerance factor of a precision.
+fn weld_factor(precision: Precision) -> f64 {
+    match precision {
+        Precision::F64 => WELD_F64,
+        Precision::F32 => WELD_F32,
+    }
+}
+
+/// The largest extent of the bounding box of `points` (0 when empty or not
+/// finite).
+pub fn extent<'a>(points: impl IntoIterator<Item = &'a [f64; 3]>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f64, f64::max);
+    if size.is_finite() {
+        size
+    } else {
+        0.0
     }
 }
 
@@ -166,8 +283,12 @@ fn format<R: Scalar, const K: usize>(
     set: &PatchSet<R, K>,
     args: &PatchesArgs,
     name: &str,
-) -> Result<Vec<u8>, CliError> {
+) -> Result<Vec<u8>, CliError>
+where
+    TensorPatch<R, K>: Into<PatchGeometry<R>>,
+{
     let grid = args.grid as usize;
+    let factor = weld_factor(args.precision);
     Ok(match args.format() {
         PatchFormat::Json => {
             let out: Vec<PatchOutput<R>> = set
@@ -179,19 +300,29 @@ fn format<R: Scalar, const K: usize>(
         }
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);
-            set.to_obj(&set.to_mesh(grid), grid, &title).into_bytes()
+            let tess = set.tessellate(grid, factor);
+            set.to_obj(&tess, grid, factor, &title).into_bytes()
         }
-        PatchFormat::Png => png_bytes(&set.to_mesh(grid), Up::Z)?,
+        PatchFormat::Png => {
+            let tess = set.tessellate_with_parameters(grid, factor);
+            png_bytes(&tess, Some(&tess.uvs), Up::Z)?
+        }
     })
 }
 
-/// The default view of a mesh, `up` pointing up, as PNG bytes.
-pub fn png_bytes<R: Scalar>(mesh: &Mesh<R>, up: Up) -> Result<Vec<u8>, CliError> {
+/// The default view of a tessellation, `up` pointing up, as PNG bytes;
+/// patch boundaries drawn where `params` gives each vertex's patch
+/// parameters ([`PatchSet::tessellate_with_parameters`]).
+pub fn png_bytes<R: Scalar>(
+    tess: &Tessellation<R>,
+    params: Option<&[[f64; 2]]>,
+    up: Up,
+) -> Result<Vec<u8>, CliError> {
     let view = View {
         up,
         ..View::default()
     };
-    encode_png(&render(mesh, &view)).map_err(|e| CliError::Io {
+    encode_png(&render(tess, params, &view)).map_err(|e| CliError::Io {
         path: "<png encoder>".into(),
         message: e.to_string(),
     })
@@ -221,8 +352,23 @@ pub fn collect_eg<R: Scalar>(
         outer: 0,
         rings,
         valence: eg.valence(),
+        size: extent(eg_points(input)),
     };
     check_finite(name, set)
+}
+
+/// The points of a polar input: pole and links.
+fn polar_points(input: &PolarInput) -> impl Iterator<Item = &[f64; 3]> {
+    std::iter::once(&input.pole).chain(input.links.iter().flatten())
+}
+
+/// The points of an EG input: the c-net's centre and sectors, or the
+/// d-net's sectors and `c0`.
+fn eg_points(input: &EgInput) -> Box<dyn Iterator<Item = &[f64; 3]> + '_> {
+    match input {
+        EgInput::Cnet(c) => Box::new(std::iter::once(&c.center).chain(c.sectors.iter().flatten())),
+        EgInput::Dnet(d) => Box::new(d.sectors.iter().flatten().chain(&d.c0)),
+    }
 }
 
 fn check_finite<R: Scalar, const K: usize>(
@@ -252,6 +398,7 @@ pub fn collect<R: Scalar>(
     let n = config.valence();
     let set = Job {
         name,
+        size: extent(polar_points(input)),
         config: &config,
         depth,
         first,
@@ -264,6 +411,7 @@ pub fn collect<R: Scalar>(
 
 struct Job<'a, R> {
     name: &'a str,
+    size: f64,
     config: &'a Config<R>,
     depth: u32,
     first: FirstStep,
@@ -296,6 +444,7 @@ impl<R: Scalar> Job<'_, R> {
             outer,
             rings,
             valence: net.valence(),
+            size: self.size,
         })
     }
 }
@@ -346,45 +495,51 @@ fn stream<R: Scalar>(
         message: e.to_string(),
     };
     let grid = args.grid as usize;
+    let factor = weld_factor(args.precision);
+    let size = extent(polar_points(input));
+    let last = rings.last().map(|r| r.0);
     let mut writer = match args.format() {
         PatchFormat::Obj => {
-            let side = grid.max(1) + 1;
             let title = format!("capdiv patches --depth {} {name}", args.depth);
-            let header = [
-                title,
-                describe(total, outer.len(), &rings, 4),
-                format!(
-                    "each patch sampled on a {grid}x{grid} grid: {} vertices, {} quads; \
-                     vertices on shared patch edges are duplicated (not welded)",
-                    total * side * side,
-                    total * grid.max(1) * grid.max(1)
-                ),
-            ];
-            for line in header {
-                writeln!(out, "# {line}").map_err(io)?;
+            let describe = describe(total, outer.len(), &rings, 4);
+            let header = obj_header(&title, describe, grid, factor, size);
+            let text = IoText {
+                w: &mut out,
+                header: String::new(),
+                error: None,
+            };
+            let header: Vec<&str> = header.iter().map(String::as_str).collect();
+            PatchWriter::Obj {
+                tess: Box::new(StreamTessellator::new(grid, R::from_f64(factor * size))),
+                obj: ObjWriter::new(text, &header),
             }
-            PatchWriter::Obj { grid }
         }
         _ => PatchWriter::Json {
+            out: &mut out,
             pretty: args.pretty,
             count: 0,
         },
     };
     for patch in outer.patches() {
-        writer.patch(&mut out, 0, &patch).map_err(io)?;
+        writer.patch(0, &patch, 0).map_err(io)?;
     }
-    for &(level, _) in &rings {
+    for &(level, len) in &rings {
         for span in [0u8, 1] {
             let opts = StreamOptions::depth(level)
                 .first(first)
                 .only(level, Some(span));
             let sweep = state.sweep(pole, links, opts).map_err(kernel)?;
+            // Span 0 comes first in a ring: its column `j` is patch `j`.
+            let finer = match (span, Some(level) == last) {
+                (0, false) => inner_edges(4, 0, len),
+                _ => 0,
+            };
             for p in sweep {
-                writer.patch(&mut out, level, &p.patch).map_err(io)?;
+                writer.patch(level, &p.patch, finer).map_err(io)?;
             }
         }
     }
-    writer.finish(&mut out, total).map_err(io)?;
+    writer.finish().map_err(io)?;
     out.commit().map_err(io)?;
     // Everything is written: nothing left for the caller to write.
     Ok(Outcome::new(Vec::new(), Sink::Stdout))
@@ -392,24 +547,33 @@ fn stream<R: Scalar>(
 
 /// How `--stream` formats patches: the bytes `format` writes for the whole
 /// set, piece by piece.
-enum PatchWriter {
+enum PatchWriter<'a, R> {
     /// `to_json` of the list: compact elements joined by `,` (pretty: each
     /// element indented as `indent` does inside the array).
-    Json { pretty: bool, count: usize },
-    /// `to_obj` of the tessellated patches: `v`/`vn` lines per patch as they
-    /// come, the quads (pure index arithmetic) at the end.
-    Obj { grid: usize },
+    Json {
+        out: &'a mut StreamOut,
+        pretty: bool,
+        count: usize,
+    },
+    /// [`PatchSet::to_obj`]'s lines: the welded tessellation as it comes
+    /// (faces after their vertices instead of all at the end), the counts
+    /// as the last comment line.
+    Obj {
+        tess: Box<StreamTessellator<R>>,
+        obj: ObjWriter<IoText<'a, StreamOut>>,
+    },
 }
 
-impl PatchWriter {
-    fn patch<R: Scalar>(
+impl<R: Scalar> PatchWriter<'_, R> {
+    /// One patch of `level`, with its finer edges.
+    fn patch(
         &mut self,
-        out: &mut impl std::io::Write,
         level: u32,
         patch: &capdiv::BicubicPatch<R>,
+        finer: u8,
     ) -> std::io::Result<()> {
         match self {
-            PatchWriter::Json { pretty, count } => {
+            PatchWriter::Json { out, pretty, count } => {
                 let compact = serde_json::to_vec(&PatchOutput::new(level, patch))
                     .map_err(std::io::Error::other)?;
                 out.write_all(if *count == 0 { b"[" } else { b"," })?;
@@ -425,46 +589,43 @@ impl PatchWriter {
                     out.write_all(&compact)?;
                 }
                 *count += 1;
+                Ok(())
             }
-            PatchWriter::Obj { grid } => {
-                let mesh = Mesh::from_patches([(level, patch)], *grid);
-                for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
-                    let [x, y, z] = p.0;
-                    let [a, b, c] = n.0;
-                    writeln!(out, "v {x} {y} {z}")?;
-                    writeln!(out, "vn {a} {b} {c}")?;
-                }
+            PatchWriter::Obj { tess, obj } => {
+                let p = TessPatch {
+                    finer,
+                    ..TessPatch::new((*patch).into(), level)
+                };
+                tess.push(&p, None, obj);
+                obj_error(obj)
             }
         }
-        Ok(())
     }
 
-    fn finish(&self, out: &mut impl std::io::Write, total: usize) -> std::io::Result<()> {
-        match *self {
-            PatchWriter::Json { pretty, count } => {
+    fn finish(self) -> std::io::Result<()> {
+        match self {
+            PatchWriter::Json { out, pretty, count } => {
                 if count == 0 {
                     out.write_all(&to_json(&Vec::<PatchOutput<f64>>::new(), pretty))
                 } else {
                     out.write_all(if pretty { b"\n]\n" } else { b"]\n" })
                 }
             }
-            PatchWriter::Obj { grid } => {
-                let grid = grid.max(1);
-                let side = grid + 1;
-                for k in 0..total {
-                    let base = k * side * side + 1; // OBJ indices are 1-based
-                    for a in 0..grid {
-                        for b in 0..grid {
-                            let idx = |a: usize, b: usize| base + a * side + b;
-                            let [a, b, c, d] =
-                                [idx(a, b), idx(a + 1, b), idx(a + 1, b + 1), idx(a, b + 1)];
-                            writeln!(out, "f {a}//{a} {b}//{b} {c}//{c} {d}//{d}")?;
-                        }
-                    }
-                }
-                Ok(())
+            PatchWriter::Obj { mut tess, mut obj } => {
+                let s = tess.finish(&mut obj);
+                obj_error(&mut obj)?;
+                let counts = counts_line(s.vertices, s.triangles, s.quads);
+                writeln!(obj.out.w, "# {counts}")
             }
         }
+    }
+}
+
+/// The first write error of a streamed OBJ, if any.
+fn obj_error(obj: &mut ObjWriter<IoText<'_, StreamOut>>) -> std::io::Result<()> {
+    match obj.out.error.take() {
+        Some(e) => Err(e),
+        None => Ok(()),
     }
 }
 

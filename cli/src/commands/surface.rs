@@ -39,7 +39,6 @@ use crate::args::{
 use crate::error::{CliError, Naming};
 use crate::export::{gltf, step};
 use crate::input::{parse, Input, Source};
-use crate::mesh::Mesh;
 use crate::output::{to_json, Sink};
 use crate::table::Table;
 use crate::text::{count, sig};
@@ -254,9 +253,7 @@ fn produce<R: Scalar>(
                     );
                     obj_text(&tess, &surface.summary, &title).into_bytes()
                 }
-                SurfaceFormat::Png => {
-                    super::patches::png_bytes(&render_mesh(&tess.mesh), args.up.into())?
-                }
+                SurfaceFormat::Png => super::patches::png_bytes(&tess.mesh, None, args.up.into())?,
                 _ => {
                     let groups = gltf::groups(&tess.mesh.tags, objects);
                     let doc = gltf::document(&tess.mesh, &groups);
@@ -1197,26 +1194,6 @@ pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> St
         ),
     ];
     write_obj(&tess.mesh, &header)
-}
-
-/// The tessellation as the renderer's mesh: triangles as quads with a
-/// repeated last corner (the renderer skips the empty half), no patch
-/// parameters (no boundary lines), tags = levels.
-pub fn render_mesh<R: Scalar>(t: &Tessellation<R>) -> Mesh<R> {
-    Mesh {
-        positions: t.positions.clone(),
-        normals: t.normals.clone(),
-        uv: vec![[0.5; 2]; t.positions.len()],
-        quads: t
-            .faces
-            .iter()
-            .map(|f| match *f {
-                Face::Tri([a, b, c]) => [a, b, c, c].map(|i| i as usize),
-                Face::Quad(q) => q.map(|i| i as usize),
-            })
-            .collect(),
-        tags: t.tags.clone(),
-    }
 }
 
 /// The human-readable summary block (stderr); faces and vertices numbered

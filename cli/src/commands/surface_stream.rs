@@ -48,10 +48,10 @@ pub fn streams(args: &SurfaceArgs, mesh: &MeshInput) -> bool {
 /// `fmt::Write` over an `io::Write`, keeping the first I/O error; `header`
 /// goes first, with the first write (a surface refused as empty writes
 /// nothing).
-struct IoText<'a, W> {
-    w: &'a mut W,
-    header: String,
-    error: Option<std::io::Error>,
+pub(crate) struct IoText<'a, W> {
+    pub(crate) w: &'a mut W,
+    pub(crate) header: String,
+    pub(crate) error: Option<std::io::Error>,
 }
 
 impl<W: Write> std::fmt::Write for IoText<'_, W> {

@@ -401,6 +401,76 @@ pub const SPEC_N5: [&[[i64; 12]]; 5] = [
     ],
 ];
 
+/// Checks that `obj` is a welded, consistently oriented surface with the
+/// topology of an annulus (the rings of a cap around its open hole, with the
+/// outer region or the outer boundary): every vertex used, every edge used by
+/// one face or by two in opposite directions (no crack, no T-junction, no
+/// flip), Euler characteristic `V − E + F = 0`, and its boundary edges
+/// (used once) forming exactly two closed loops. Returns the loops' lengths
+/// in edges, shorter first.
+pub fn assert_welded_annulus(obj: &Obj, name: &str) -> [usize; 2] {
+    use std::collections::HashMap;
+    let mut used = vec![false; obj.v.len()];
+    // Directed edge -> uses; undirected edge -> uses.
+    let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+    for f in &obj.f {
+        for k in 0..f.len() {
+            let (a, b) = (f[k].0, f[(k + 1) % f.len()].0);
+            assert!(a >= 1 && a <= obj.v.len(), "{name}: index {a}");
+            assert_ne!(a, b, "{name}: degenerate edge");
+            used[a - 1] = true;
+            *directed.entry((a, b)).or_default() += 1;
+        }
+    }
+    assert!(used.iter().all(|&u| u), "{name}: unused vertex");
+    let mut boundary: HashMap<usize, usize> = HashMap::new();
+    let mut edges = 0;
+    for (&(a, b), &n) in &directed {
+        assert_eq!(
+            n, 1,
+            "{name}: edge {a}->{b} used {n} times in one direction"
+        );
+        match directed.get(&(b, a)) {
+            Some(_) => edges += 1, // counted from both sides: halved below
+            None => {
+                edges += 2;
+                assert!(
+                    boundary.insert(a, b).is_none(),
+                    "{name}: two boundary edges leave vertex {a}"
+                );
+            }
+        }
+    }
+    let edges = edges / 2;
+    let euler = obj.v.len() as i64 - edges as i64 + obj.f.len() as i64;
+    assert_eq!(euler, 0, "{name}: Euler characteristic");
+    // Boundary loops: each boundary vertex has one outgoing boundary edge.
+    let mut seen: HashMap<usize, bool> = HashMap::new();
+    let mut loops = Vec::new();
+    for &start in boundary.keys() {
+        if seen.contains_key(&start) {
+            continue;
+        }
+        let (mut v, mut len) = (start, 0);
+        while seen.insert(v, true).is_none() {
+            v = *boundary
+                .get(&v)
+                .unwrap_or_else(|| panic!("{name}: boundary ends at vertex {v}"));
+            len += 1;
+        }
+        assert_eq!(v, start, "{name}: boundary loops cross");
+        loops.push(len);
+    }
+    loops.sort_unstable();
+    assert_eq!(loops.len(), 2, "{name}: boundary loops {loops:?}");
+    [loops[0], loops[1]]
+}
+
+/// Whether `p` is one of `obj`'s vertices, within `tol` per coordinate.
+pub fn has_vertex(obj: &Obj, p: &[f64; 3], tol: f64) -> bool {
+    obj.v.iter().any(|v| diff(v, p) <= tol)
+}
+
 /// A rule-table file `{"valence", "A11", "A22", "A21", "A31", "A32"}`.
 pub fn table_json(n: usize, arrays: [&[[i64; 12]]; 5]) -> Value {
     json!({

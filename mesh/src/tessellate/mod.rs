@@ -71,6 +71,18 @@ pub enum PatchGeometry<R> {
     Quartic(BiquarticPatch<R>),
 }
 
+impl<R> From<BicubicPatch<R>> for PatchGeometry<R> {
+    fn from(p: BicubicPatch<R>) -> Self {
+        PatchGeometry::Cubic(p)
+    }
+}
+
+impl<R> From<BiquarticPatch<R>> for PatchGeometry<R> {
+    fn from(p: BiquarticPatch<R>) -> Self {
+        PatchGeometry::Quartic(p)
+    }
+}
+
 /// One patch to tessellate, with what lies across each of its edges.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TessPatch<R> {
