@@ -16,6 +16,8 @@
 //! - [`export`]: exchange formats of a whole surface (glTF 2.0, STEP);
 //! - [`render`]: a tessellation (`capdiv_mesh::tessellate`) as a shaded PNG
 //!   preview;
+//! - [`raster`]: the one triangle rasteriser (z-buffer, supersampling) of
+//!   [`render`] and [`picture`];
 //! - [`picture`]: shapes shaded per pixel from the exact patches (highlight
 //!   lines, curvature maps with legends), one panel per scheme;
 //! - [`camera`]: the pictures' view (azimuth, elevation, up axis) and its
@@ -42,6 +44,7 @@ pub mod input;
 pub mod net;
 pub mod output;
 pub mod picture;
+pub mod raster;
 pub mod render;
 pub mod samples;
 pub mod shape;

@@ -4,7 +4,7 @@
 //! 1. Every patch is tessellated on a `grid × grid` parameter grid; each
 //!    vertex carries (patch index, `u`, `v`). Hole edges get a fan of
 //!    triangles to the cap's limit point, tagged as hole.
-//! 2. The triangles are rasterised (orthographic camera of
+//! 2. The triangles are rasterised ([`crate::raster`]: orthographic camera of
 //!    [`crate::camera`], z-buffer, 2×2 supersampling); a pixel keeps the
 //!    patch index and the barycentric interpolation of `(u, v)`.
 //! 3. Each covered pixel evaluates its patch's jet at `(u, v)`
@@ -23,6 +23,7 @@
 
 use crate::camera::{dot, Fit, V3};
 pub use crate::camera::{Camera, Focus, Up};
+use crate::raster::{downsample, ZBuffer};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
@@ -134,61 +135,23 @@ fn rasterise(shapes: &[&Shape], cam: &Camera) -> (Fit, Vec<Hits>) {
     let hits = tris
         .iter()
         .map(|list| {
-            let mut depth = vec![f64::NEG_INFINITY; w * h];
+            let mut z = ZBuffer::new(w, h);
             let mut hits = Hits {
                 w,
                 patch: vec![NO_PATCH; w * h],
                 uv: vec![[0.0; 2]; w * h],
             };
             for t in list {
-                let s = t.map(|v| screen(v.p));
-                if s.iter().flatten().any(|c| !c.is_finite()) {
-                    continue;
-                }
-                let area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1])
-                    - (s[2][0] - s[0][0]) * (s[1][1] - s[0][1]);
-                if area.abs() < 1e-12 {
-                    continue;
-                }
                 // A little overlap (1/8 supersample) closes cracks between
                 // patches tessellated independently.
-                let eps = 0.125 / area.abs().sqrt().max(1.0);
-                let xs = s.map(|p| p[0]);
-                let ys = s.map(|p| p[1]);
-                let x0 = (xs.iter().cloned().fold(f64::INFINITY, f64::min) - 1.0).max(0.0) as usize;
-                let x1 =
-                    ((xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max) + 1.0) as usize).min(w);
-                let y0 = (ys.iter().cloned().fold(f64::INFINITY, f64::min) - 1.0).max(0.0) as usize;
-                let y1 =
-                    ((ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max) + 1.0) as usize).min(h);
-                for y in y0..y1 {
-                    for x in x0..x1 {
-                        let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
-                        let edge = |a: V3, b: V3| {
-                            (b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1])
-                        };
-                        let l = [
-                            edge(s[1], s[2]) / area,
-                            edge(s[2], s[0]) / area,
-                            edge(s[0], s[1]) / area,
-                        ];
-                        if l.iter().any(|&c| c < -eps) {
-                            continue;
-                        }
-                        let z = l[0] * s[0][2] + l[1] * s[1][2] + l[2] * s[2][2];
-                        let k = y * w + x;
-                        if z <= depth[k] {
-                            continue;
-                        }
-                        depth[k] = z;
-                        hits.patch[k] = t[0].patch;
-                        let uv = [
-                            l[0] * t[0].uv[0] + l[1] * t[1].uv[0] + l[2] * t[2].uv[0],
-                            l[0] * t[0].uv[1] + l[1] * t[1].uv[1] + l[2] * t[2].uv[1],
-                        ];
-                        hits.uv[k] = uv.map(|c| c.clamp(0.0, 1.0));
-                    }
-                }
+                z.triangle(t.map(|v| screen(v.p)), 0.125, |k, l| {
+                    hits.patch[k] = t[0].patch;
+                    let uv = [
+                        l[0] * t[0].uv[0] + l[1] * t[1].uv[0] + l[2] * t[2].uv[0],
+                        l[0] * t[0].uv[1] + l[1] * t[1].uv[1] + l[2] * t[2].uv[1],
+                    ];
+                    hits.uv[k] = uv.map(|c| c.clamp(0.0, 1.0));
+                });
             }
             hits
         })
@@ -347,52 +310,47 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     for (panel, (hit, samples)) in hits.iter().zip(&samples).enumerate() {
         let stripes = stripes.get(panel);
         let x0 = panel * (cam.width + gap);
-        for y in 0..cam.height {
-            for x in 0..cam.width {
-                let mut acc = [0.0f64; 3];
-                for dy in 0..SS {
-                    for dx in 0..SS {
-                        let k = (y * SS + dy) * hit.w + x * SS + dx;
-                        let c: [f64; 3] = match (hit.patch[k], &samples[k]) {
-                            (NO_PATCH, _) => BACKGROUND.map(f64::from),
-                            (HOLE, _) => HATCH[((x + y) / 3) % 2].map(f64::from),
-                            (_, None) => [90.0, 90.0, 90.0],
-                            (_, Some(s)) => {
-                                let mut nrm = s.normal;
-                                if dot(nrm, toward) < 0.0 {
-                                    nrm = nrm.map(|c| -c);
-                                }
-                                let lambert = dot(nrm, light).max(0.0);
-                                match shading {
-                                    Shading::Plain => {
-                                        let base = if s.level % 2 == 0 {
-                                            [235.0, 150.0, 90.0]
-                                        } else {
-                                            [95.0, 155.0, 215.0]
-                                        };
-                                        base.map(|c| c * (0.25 + 0.75 * lambert))
-                                    }
-                                    Shading::Highlight(_) => {
-                                        let i = stripes.map_or(0.0, |st| st[k]);
-                                        let g = 120.0 + 125.0 * lambert;
-                                        [g * (1.0 - i), g * (1.0 - i), g * (1.0 - 0.6 * i)]
-                                    }
-                                    Shading::Gauss | Shading::Mean => {
-                                        let m = scale.unwrap_or(1.0);
-                                        diverging(value(s) / m)
-                                            .map(|c| f64::from(c) * (0.6 + 0.4 * lambert))
-                                    }
-                                }
-                            }
-                        };
-                        for d in 0..3 {
-                            acc[d] += c[d];
+        let color: Vec<[f64; 3]> = (0..hit.patch.len())
+            .map(|k| match (hit.patch[k], &samples[k]) {
+                (NO_PATCH, _) => BACKGROUND.map(f64::from),
+                (HOLE, _) => {
+                    // Hatched by output pixel.
+                    let (x, y) = ((k % hit.w) / SS, (k / hit.w) / SS);
+                    HATCH[((x + y) / 3) % 2].map(f64::from)
+                }
+                (_, None) => [90.0, 90.0, 90.0],
+                (_, Some(s)) => {
+                    let mut nrm = s.normal;
+                    if dot(nrm, toward) < 0.0 {
+                        nrm = nrm.map(|c| -c);
+                    }
+                    let lambert = dot(nrm, light).max(0.0);
+                    match shading {
+                        Shading::Plain => {
+                            let base = if s.level % 2 == 0 {
+                                [235.0, 150.0, 90.0]
+                            } else {
+                                [95.0, 155.0, 215.0]
+                            };
+                            base.map(|c| c * (0.25 + 0.75 * lambert))
+                        }
+                        Shading::Highlight(_) => {
+                            let i = stripes.map_or(0.0, |st| st[k]);
+                            let g = 120.0 + 125.0 * lambert;
+                            [g * (1.0 - i), g * (1.0 - i), g * (1.0 - 0.6 * i)]
+                        }
+                        Shading::Gauss | Shading::Mean => {
+                            let m = scale.unwrap_or(1.0);
+                            diverging(value(s) / m).map(|c| f64::from(c) * (0.6 + 0.4 * lambert))
                         }
                     }
                 }
-                let c = acc.map(|c| (c / (SS * SS) as f64).round().clamp(0.0, 255.0) as u8);
-                pic.put(x0 + x, top + y, c);
-            }
+            })
+            .collect();
+        let rgb = downsample(&color, hit.w, cam.width, cam.height, SS);
+        for (i, c) in rgb.chunks(3).enumerate() {
+            let (x, y) = (i % cam.width.max(1), i / cam.width.max(1));
+            pic.put(x0 + x, top + y, [c[0], c[1], c[2]]);
         }
         if top > 0 {
             // Clipped to the panel.

@@ -1,16 +1,18 @@
-//! PNG preview of a [`Tessellation`]: a small software rasteriser (orthographic view
-//! from above at an angle, z-buffer, per-pixel Lambert shading of the
-//! interpolated normals, 2×2 supersampling), encoded with the `png` crate.
+//! PNG preview of a [`Tessellation`], rasterised by [`crate::raster`]
+//! (orthographic view from above at an angle, z-buffer, per-pixel Lambert
+//! shading of the interpolated normals, 2×2 supersampling), encoded with the
+//! `png` crate.
 //!
-//! Faces are coloured by their tag (the level of their patch), alternating warm (even
-//! levels, [`EVEN`]) and cool (odd levels, [`ODD`]), so the rings of the
+//! Faces are coloured by their tag (the level of their patch), alternating
+//! warm (even levels, [`EVEN`]) and cool (odd levels, [`ODD`]), so the rings of the
 //! subdivision show; the back side is grey. A legend in the bottom margin
 //! says so ([`RING_LEGEND`]). Patch boundaries are drawn as thin dark lines
 //! where the caller gives each vertex's patch parameters and a patch is
 //! large enough on screen (more than [`MIN_LINE_PATCH`] pixels). Only for
 //! looking at results: no claim of accuracy.
 
-use crate::camera::{Camera, Up};
+use crate::camera::{cross, dot, unit, Camera, Up, V3};
+use crate::raster::{area, downsample, drawable, ZBuffer};
 use crate::Scalar;
 use capdiv_mesh::tessellate::{Face, Tessellation};
 
@@ -69,26 +71,6 @@ pub const MIN_LINE_PATCH: f64 = 8.0;
 
 /// Background colour.
 pub const BACKGROUND: [u8; 3] = [246, 246, 246];
-
-type V3 = [f64; 3];
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn sub(a: V3, b: V3) -> V3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn unit(a: V3) -> Option<V3> {
-    let l = dot(a, a).sqrt();
-    (l > 0.0 && l.is_finite()).then(|| a.map(|c| c / l))
-}
 
 /// Renders `mesh` as seen from `view`; with `params`, per vertex the
 /// parameters `(u, v)` of its patch, patch boundaries are drawn.
@@ -155,7 +137,7 @@ pub fn render<R: Scalar>(
         })
         .collect();
 
-    let mut depth = vec![f64::NEG_INFINITY; w * h];
+    let mut z = ZBuffer::new(w, h);
     let mut color = vec![BACKGROUND.map(f64::from); w * h];
     for (f, &tag) in mesh.faces.iter().zip(&mesh.tags) {
         let base = if tag % 2 == 0 { EVEN } else { ODD }.map(f64::from);
@@ -165,17 +147,17 @@ pub fn render<R: Scalar>(
         };
         for tri in tris.into_iter().flatten() {
             let tri = tri.map(|i| i as usize);
+            let sub = |a: V3, b: V3| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
             let face = unit(cross(
                 sub(pos[tri[1]], pos[tri[0]]),
                 sub(pos[tri[2]], pos[tri[0]]),
             ));
             let Some(face) = face else { continue };
             let s = tri.map(|i| screen[i]);
-            let area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1])
-                - (s[2][0] - s[0][0]) * (s[1][1] - s[0][1]);
-            if area.abs() < 1e-12 || !area.is_finite() {
+            if !drawable(&s) {
                 continue;
             }
+            let area = area(&s);
             // Screen-space gradients of u and v (constant on the triangle),
             // for boundary lines of constant width in pixels.
             let uv = tri.map(|i| params.and_then(|p| p.get(i)).copied().unwrap_or([0.5; 2]));
@@ -186,99 +168,42 @@ pub fn render<R: Scalar>(
                 (gx * gx + gy * gy).sqrt()
             };
             let (gu, gv) = (grad(0), grad(1));
-            let x0 = s
-                .iter()
-                .map(|p| p[0])
-                .fold(f64::INFINITY, f64::min)
-                .floor()
-                .max(0.0) as usize;
-            let x1 = (s
-                .iter()
-                .map(|p| p[0])
-                .fold(f64::NEG_INFINITY, f64::max)
-                .ceil() as usize)
-                .min(w);
-            let y0 = s
-                .iter()
-                .map(|p| p[1])
-                .fold(f64::INFINITY, f64::min)
-                .floor()
-                .max(0.0) as usize;
-            let y1 = (s
-                .iter()
-                .map(|p| p[1])
-                .fold(f64::NEG_INFINITY, f64::max)
-                .ceil() as usize)
-                .min(h);
-            for y in y0..y1 {
-                for x in x0..x1 {
-                    let (px, py) = (x as f64 + 0.5, y as f64 + 0.5);
-                    let edge =
-                        |a: V3, b: V3| (b[0] - a[0]) * (py - a[1]) - (px - a[0]) * (b[1] - a[1]);
-                    let l = [
-                        edge(s[1], s[2]) / area,
-                        edge(s[2], s[0]) / area,
-                        edge(s[0], s[1]) / area,
-                    ];
-                    if l.iter().any(|&c| c < 0.0) {
-                        continue;
+            z.triangle(s, 0.0, |k, l| {
+                let mut n = [0.0; 3];
+                for (c, &i) in l.iter().zip(&tri) {
+                    for d in 0..3 {
+                        n[d] += c * nrm[i][d];
                     }
-                    let z = l[0] * s[0][2] + l[1] * s[1][2] + l[2] * s[2][2];
-                    let k = y * w + x;
-                    if z <= depth[k] {
-                        continue;
-                    }
-                    depth[k] = z;
-                    let mut n = [0.0; 3];
-                    for (c, &i) in l.iter().zip(&tri) {
-                        for d in 0..3 {
-                            n[d] += c * nrm[i][d];
-                        }
-                    }
-                    let mut n = unit(n).unwrap_or(face);
-                    let front = dot(face, toward) >= 0.0;
-                    if dot(n, toward) < 0.0 {
-                        n = n.map(|c| -c);
-                    }
-                    let shade = 0.25 + 0.75 * dot(n, light).max(0.0);
-                    let albedo = if front { base } else { [170.0, 170.0, 170.0] };
-                    // Distance to the patch boundary in (supersampled) pixels.
-                    let (u, v) = (
-                        l[0] * uv[0][0] + l[1] * uv[1][0] + l[2] * uv[2][0],
-                        l[0] * uv[0][1] + l[1] * uv[1][1] + l[2] * uv[2][1],
-                    );
-                    let line = |t: f64, g: f64| {
-                        g > 0.0
-                            && 1.0 / g > MIN_LINE_PATCH * SS as f64
-                            && t.min(1.0 - t) / g < 0.6 * SS as f64
-                    };
-                    let ink = if line(u, gu) || line(v, gv) {
-                        0.45
-                    } else {
-                        1.0
-                    };
-                    color[k] = albedo.map(|c| c * shade * ink);
                 }
-            }
+                let mut n = unit(n).unwrap_or(face);
+                let front = dot(face, toward) >= 0.0;
+                if dot(n, toward) < 0.0 {
+                    n = n.map(|c| -c);
+                }
+                let shade = 0.25 + 0.75 * dot(n, light).max(0.0);
+                let albedo = if front { base } else { [170.0, 170.0, 170.0] };
+                // Distance to the patch boundary in (supersampled) pixels.
+                let (u, v) = (
+                    l[0] * uv[0][0] + l[1] * uv[1][0] + l[2] * uv[2][0],
+                    l[0] * uv[0][1] + l[1] * uv[1][1] + l[2] * uv[2][1],
+                );
+                let line = |t: f64, g: f64| {
+                    g > 0.0
+                        && 1.0 / g > MIN_LINE_PATCH * SS as f64
+                        && t.min(1.0 - t) / g < 0.6 * SS as f64
+                };
+                let ink = if line(u, gu) || line(v, gv) {
+                    0.45
+                } else {
+                    1.0
+                };
+                color[k] = albedo.map(|c| c * shade * ink);
+            });
         }
     }
 
     let (ow, oh) = (w / SS, h / SS);
-    let mut rgb = Vec::with_capacity(3 * ow * oh);
-    for y in 0..oh {
-        for x in 0..ow {
-            let mut acc = [0.0; 3];
-            for dy in 0..SS {
-                for dx in 0..SS {
-                    let c = color[(y * SS + dy) * w + x * SS + dx];
-                    for d in 0..3 {
-                        acc[d] += c[d];
-                    }
-                }
-            }
-            rgb.extend(acc.map(|c| (c / (SS * SS) as f64).round().clamp(0.0, 255.0) as u8));
-        }
-    }
+    let rgb = downsample(&color, w, ow, oh, SS);
     let mut image = Image {
         width: ow,
         height: oh,
