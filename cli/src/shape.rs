@@ -336,27 +336,9 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     })
 }
 
-/// A polar configuration as a mesh: vertex 0 the pole, link `i` column `j`
-/// vertex `1 + (i−1)n + j`; faces: the fan `(pole, l1[j], l1[j+1])` (faces
-/// `0..n`), then per pair of links `i, i+1` the quads
-/// `(li[j], li+1[j], li+1[j+1], li[j+1])` (faces `n·i .. n·(i+1)`).
+/// A polar configuration as a mesh ([`MeshInput::polar_disk`]).
 pub fn polar_mesh(input: &PolarInput) -> MeshInput {
-    let n = input.links.first().map_or(0, Vec::len);
-    let mut vertices = vec![input.pole];
-    for l in &input.links {
-        vertices.extend_from_slice(l);
-    }
-    let id = |i: usize, j: usize| (1 + i * n + j % n) as u32;
-    let mut faces = Vec::new();
-    for j in 0..n {
-        faces.push(vec![0, id(0, j), id(0, j + 1)]);
-    }
-    for i in 0..input.links.len().saturating_sub(1) {
-        for j in 0..n {
-            faces.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    MeshInput::new(vertices, faces)
+    MeshInput::polar_disk(input.pole, &input.links)
 }
 
 /// Catmull-Clark on a polar configuration: through the mesh pipeline.

@@ -7,6 +7,7 @@
 
 use crate::error::MeshError;
 use alloc::string::String;
+use alloc::vec;
 use alloc::vec::Vec;
 
 /// A polygon mesh: positions, faces (0-based indices, any polygon size),
@@ -38,6 +39,30 @@ impl MeshInput {
             uvs: Vec::new(),
             uv_faces: Vec::new(),
         }
+    }
+
+    /// The open disk a polar configuration spans (pole `q00` and links
+    /// `1, 2, …`, each a closed ring of `n` points): vertex 0 the pole, point
+    /// `j` of link `i` (0-based) vertex `1 + i·n + j`; faces the fan
+    /// `(pole, l1[j], l1[j+1])` (faces `0..n`), then per pair of links
+    /// `i, i+1` the quads `(li[j], li+1[j], li+1[j+1], li[j+1])` (faces
+    /// `n·(i+1) .. n·(i+2)`), counter-clockwise as the links turn. `n` is the
+    /// first link's length; the faces index the points as if every link had
+    /// `n` (check the lengths first).
+    pub fn polar_disk(pole: [f64; 3], links: &[Vec<[f64; 3]>]) -> Self {
+        let n = links.first().map_or(0, Vec::len);
+        let mut vertices = vec![pole];
+        for l in links {
+            vertices.extend_from_slice(l);
+        }
+        let at = |i: usize, j: usize| (1 + i * n + j % n) as u32;
+        let mut faces: Vec<Vec<u32>> = (0..n).map(|j| vec![0, at(0, j), at(0, j + 1)]).collect();
+        for i in 0..links.len().saturating_sub(1) {
+            for j in 0..n {
+                faces.push(vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        MeshInput::new(vertices, faces)
     }
 
     /// The mesh with face-varying UVs: the pool `uvs` and, per face corner,

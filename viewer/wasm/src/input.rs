@@ -100,10 +100,8 @@ fn mesh_of_json(vertices: Vec<[f64; 3]>, faces: &[Vec<i64>]) -> Result<MeshInput
     Ok(MeshInput::new(vertices, out))
 }
 
-/// The open disk of a polar configuration: vertex 0 the pole, then link `k`
-/// point `j` at `1 + k·n + j`; triangles `(pole, l1[j], l1[j+1])`, quads
-/// `(lk[j], lk+1[j], lk+1[j+1], lk[j+1])` — counter-clockwise when the links
-/// are (docs/math/c2ps.md §1).
+/// The open disk of a polar configuration ([`MeshInput::polar_disk`]),
+/// after checking its shape (at least 2 links of one length `n ≥ 3`).
 pub fn polar_disk(pole: [f64; 3], links: &[Vec<[f64; 3]>]) -> Result<MeshInput, String> {
     let n = links.first().map_or(0, Vec::len);
     if links.len() < 2 {
@@ -119,18 +117,7 @@ pub fn polar_disk(pole: [f64; 3], links: &[Vec<[f64; 3]>]) -> Result<MeshInput, 
             links[k].len()
         ));
     }
-    let mut vertices = vec![pole];
-    for l in links {
-        vertices.extend_from_slice(l);
-    }
-    let at = |k: usize, j: usize| (1 + k * n + j % n) as u32;
-    let mut faces: Vec<Vec<u32>> = (0..n).map(|j| vec![0, at(0, j), at(0, j + 1)]).collect();
-    for k in 0..links.len() - 1 {
-        for j in 0..n {
-            faces.push(vec![at(k, j), at(k + 1, j), at(k + 1, j + 1), at(k, j + 1)]);
-        }
-    }
-    Ok(MeshInput::new(vertices, faces))
+    Ok(MeshInput::polar_disk(pole, links))
 }
 
 #[cfg(test)]
