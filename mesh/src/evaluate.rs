@@ -603,7 +603,7 @@ impl<R: Real> Scratch<R> {
                     last: bool,
                     k: usize,
                     dom: PatchDomain,
-                    geometry: Geom<R>,
+                    geometry: PatchGeometry<R>,
                     kind: PatchKind,
                     limit: Point3<R>| {
             let chart = e
@@ -621,7 +621,7 @@ impl<R: Real> Scratch<R> {
             };
             let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
             let rec = match geometry {
-                Geom::Cubic(p) => record(
+                PatchGeometry::Cubic(p) => record(
                     kind,
                     m + level0,
                     &chart,
@@ -632,7 +632,7 @@ impl<R: Real> Scratch<R> {
                     limit,
                     Some(index),
                 ),
-                Geom::Quartic(p) => record(
+                PatchGeometry::Quartic(p) => record(
                     kind,
                     m + level0,
                     &chart,
@@ -701,7 +701,7 @@ impl<R: Real> Scratch<R> {
                             last,
                             k,
                             dom,
-                            Geom::Cubic(patch),
+                            PatchGeometry::Cubic(patch),
                             PatchKind::CatmullClark,
                             limit,
                         );
@@ -728,12 +728,6 @@ impl<R: Real> Scratch<R> {
     }
 }
 
-/// A ring patch of either degree.
-enum Geom<R> {
-    Cubic(TensorPatch<R, 4>),
-    Quartic(TensorPatch<R, 5>),
-}
-
 /// Runs an EG cap to `depth` (through `rule`, the Fourier form of its
 /// built-in table, when given), emitting its rings and then the cap record
 /// (normal: the mean of the last ring's normals at the corners nearest the
@@ -748,7 +742,16 @@ fn run_eg<R: Real, F>(
     index: u32,
 ) -> Result<(), EvalError>
 where
-    F: Fn(&mut dyn SurfaceSink<R>, u32, bool, usize, PatchDomain, Geom<R>, PatchKind, Point3<R>),
+    F: Fn(
+        &mut dyn SurfaceSink<R>,
+        u32,
+        bool,
+        usize,
+        PatchDomain,
+        PatchGeometry<R>,
+        PatchKind,
+        Point3<R>,
+    ),
 {
     let kernel = |error| EvalError::Kernel {
         cap: index,
@@ -788,7 +791,7 @@ where
                 last,
                 k,
                 dom,
-                Geom::Quartic(patch),
+                PatchGeometry::Quartic(patch),
                 PatchKind::Eg,
                 limit,
             );
@@ -859,7 +862,7 @@ fn record<R: Real, const K: usize>(
     cap: Option<u32>,
 ) -> PatchRecord<R>
 where
-    TensorPatch<R, K>: IntoGeometry<R>,
+    TensorPatch<R, K>: Into<PatchGeometry<R>>,
 {
     let map = &chart.map;
     // Most faces are input faces in their own frame: nothing to re-express.
@@ -871,12 +874,12 @@ where
         corner: chart.corner,
         domain: if identity { rect } else { map.rect(rect) },
         geometry: if identity {
-            patch.into_geometry()
+            patch.into()
         } else {
             TensorPatch {
                 points: map.orient(&patch.points),
             }
-            .into_geometry()
+            .into()
         },
         finer: if identity {
             finer
@@ -886,22 +889,5 @@ where
         hole: if identity { hole } else { map_edges(map, hole) },
         hole_point,
         cap,
-    }
-}
-
-/// A Bézier patch of a degree the tessellator knows.
-trait IntoGeometry<R> {
-    fn into_geometry(self) -> PatchGeometry<R>;
-}
-
-impl<R> IntoGeometry<R> for TensorPatch<R, 4> {
-    fn into_geometry(self) -> PatchGeometry<R> {
-        PatchGeometry::Cubic(self)
-    }
-}
-
-impl<R> IntoGeometry<R> for TensorPatch<R, 5> {
-    fn into_geometry(self) -> PatchGeometry<R> {
-        PatchGeometry::Quartic(self)
     }
 }
