@@ -99,7 +99,7 @@ fn collapsed_patch_has_no_normal() {
     assert_eq!(p.normal(0.5, 0.5), Err(Error::Degenerate));
 }
 
-/// The conversion is bit for bit the dense product `M d Mᵀ` with the
+/// The conversion is bit for bit `d[1][1] + M (d − d[1][1]) Mᵀ` with the
 /// weights `k/6` (written here as the literal double sum, zeros included),
 /// in f32 and f64: the firmware's logged sums are compared with tolerances
 /// of a few ulps, so the kernel's rounding must not drift.
@@ -109,12 +109,13 @@ fn bspline_to_bezier_is_bit_for_bit_the_dense_product() {
     #[allow(clippy::needless_range_loop)]
     fn dense<R: capdiv::Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>; 4]; 4] {
         let m = |a: usize, k: usize| R::ratio(BSPLINE_TO_BEZIER_CUBIC[a][k], 6);
+        let o = d[1][1];
         let mut half = [[Point3::ZERO; 4]; 4];
         for k in 0..4 {
             for b in 0..4 {
                 let mut acc = Point3::ZERO;
                 for l in 0..4 {
-                    acc += d[k][l] * m(b, l);
+                    acc += (d[k][l] - o) * m(b, l);
                 }
                 half[k][b] = acc;
             }
@@ -126,7 +127,7 @@ fn bspline_to_bezier_is_bit_for_bit_the_dense_product() {
                 for k in 0..4 {
                     acc += half[k][b] * m(a, k);
                 }
-                out[a][b] = acc;
+                out[a][b] = acc + o;
             }
         }
         out
@@ -164,4 +165,88 @@ fn bspline_to_bezier_is_bit_for_bit_the_dense_product() {
         check::<f32>(seed);
         check::<f64>(seed);
     }
+}
+
+/// A small B-spline patch far from the origin, as `f32` control points.
+fn far_small_bspline() -> [[Point3<f32>; 4]; 4] {
+    let (h, far) = (1e-2f64, [1000.0f64, -900.0, 1100.0]);
+    core::array::from_fn(|k| {
+        core::array::from_fn(|l| {
+            let (x, y) = (k as f64 * h, l as f64 * h);
+            let z = 3.0 * (x * x - 0.5 * y * y) + 0.1 * x * y;
+            Point3::new(
+                (far[0] + x) as f32,
+                (far[1] + y) as f32,
+                (far[2] + z) as f32,
+            )
+        })
+    })
+}
+
+fn widen<const K: usize>(p: &[[Point3<f32>; K]; K]) -> [[Point3<f64>; K]; K] {
+    p.map(|row| row.map(|q| Point3(q.0.map(f64::from))))
+}
+
+/// The f32 conversion of a small patch far from the origin rounds each
+/// Bézier point once, at the end: within 0.5 ulp of the coordinate (plus the
+/// local sums' rounding, ~ε of the patch's size) of the f64 conversion of
+/// the same points. Summing the coordinates themselves rounds three or four
+/// times at their size (measured: 0.41 ulp; 1.33 about zero). Bound: 0.6 ulp.
+#[test]
+fn f32_bspline_to_bezier_rounds_once_at_the_coordinates_size() {
+    let d32 = far_small_bspline();
+    let b32 = capdiv::bezier::bspline_to_bezier_cubic(&d32);
+    let b64 = capdiv::bezier::bspline_to_bezier_cubic(&widen(&d32));
+    let mut worst = 0.0f64;
+    for (r32, r64) in b32.iter().zip(&b64) {
+        for (p32, p64) in r32.iter().zip(r64) {
+            for c in 0..3 {
+                let ulp = f64::from(p32.0[c].abs()) * f64::from(f32::EPSILON);
+                worst = worst.max((f64::from(p32.0[c]) - p64.0[c]).abs() / ulp);
+            }
+        }
+    }
+    assert!(worst <= 0.6, "f32 Bézier points off by {worst:.2} ulp");
+}
+
+/// A small Bézier patch far from the origin, evaluated in `f32`: its unit
+/// normals and second partials stay within `f32` precision of the `f64`
+/// results from the same (exactly widened) control points. The patch is
+/// 1e-2 across at distance ~1.7e3, where one ulp of a coordinate is 1e-2 of
+/// the patch: de Casteljau on the coordinates would round the partials at
+/// that size (measured 3.7e-2 about zero); relative to the first control point
+/// the rounding is a few `ε` (measured 8.5e-8). Bound: 1e-5 for unit
+/// normals, 1e-4 relative for the second partials (one more difference).
+#[test]
+fn f32_partials_of_a_small_patch_far_from_the_origin_keep_f32_precision() {
+    let b32 = TensorPatch {
+        points: capdiv::bezier::bspline_to_bezier_cubic(&far_small_bspline()),
+    };
+    let b64 = TensorPatch {
+        points: widen(&b32.points),
+    };
+    let (mut normal, mut second) = (0.0f64, 0.0f64);
+    for a in 0..=4 {
+        for b in 0..=4 {
+            let (u, v) = (a as f64 / 4.0, b as f64 / 4.0);
+            let n32 = b32.normal(u as f32, v as f32).unwrap();
+            let n64 = b64.normal(u, v).unwrap();
+            for c in 0..3 {
+                normal = normal.max((f64::from(n32.0[c]) - n64.0[c]).abs());
+            }
+            let j32 = b32.jet(u as f32, v as f32).unwrap();
+            let j64 = b64.jet(u, v).unwrap();
+            for (p32, p64) in [(j32.duu, j64.duu), (j32.duv, j64.duv), (j32.dvv, j64.dvv)] {
+                let scale = p64.norm().max(1e-300);
+                for c in 0..3 {
+                    second = second.max((f64::from(p32.0[c]) - p64.0[c]).abs() / scale);
+                }
+            }
+        }
+    }
+    assert!(normal < 1e-5, "f32 normals off by {normal:.2e}");
+    assert!(
+        second < 1e-4,
+        "f32 second partials off by {second:.2e} (relative)"
+    );
 }

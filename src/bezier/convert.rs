@@ -34,7 +34,27 @@ fn span<R: Real>(p: [Point3<R>; 4], w: Sixths<R>) -> [Point3<R>; 4] {
 /// points `d[k][l]`: `b = M d Mᵀ` with `M` = [`BSPLINE_TO_BEZIER_CUBIC`] / 6,
 /// applied along `v` (each row), then along `u` (each column). The weights
 /// are computed once per call (no division per term).
+///
+/// The product runs on `d − d[1][1]` (`d[1][1]`, the patch's first corner's
+/// B-spline point, added back to each result): the weighted sums then round
+/// relative to the patch's size, not to its distance from the origin, and
+/// each Bézier point gets one rounding of that size (the final addition).
+/// Differences of neighbouring Bézier points — the partials — keep `f32`
+/// precision on small patches far from the origin. Where the points span
+/// more than the scalar's range (a difference overflows) the product runs
+/// about zero.
 pub fn bspline_to_bezier_cubic<R: Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>; 4]; 4] {
+    let local = convert_about(d, d[1][1]);
+    if local.iter().flatten().all(|p| p.is_finite()) {
+        local
+    } else {
+        // The points span more than the scalar's range: about zero.
+        convert_about(d, Point3::ZERO)
+    }
+}
+
+/// `origin + M (d − origin) Mᵀ`.
+fn convert_about<R: Real>(d: &[[Point3<R>; 4]; 4], origin: Point3<R>) -> [[Point3<R>; 4]; 4] {
     let w = Sixths {
         one: R::ratio(1, 6),
         two: R::ratio(2, 6),
@@ -42,13 +62,13 @@ pub fn bspline_to_bezier_cubic<R: Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>;
     };
     let mut half = [[Point3::ZERO; 4]; 4];
     for (h, row) in half.iter_mut().zip(d) {
-        *h = span(*row, w);
+        *h = span(row.map(|p| p - origin), w);
     }
     let mut out = [[Point3::ZERO; 4]; 4];
     for b in 0..4 {
         let col = span([half[0][b], half[1][b], half[2][b], half[3][b]], w);
         for (a, p) in col.into_iter().enumerate() {
-            out[a][b] = p;
+            out[a][b] = p + origin;
         }
     }
     out

@@ -129,8 +129,31 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
         if !inside(u) || !inside(v) {
             return Err(Error::OutOfDomain);
         }
+        // Relative to the first control point, as in `evaluate`: the
+        // derivatives round relative to the patch's size.
+        let local = self.jet_about(self.origin(), u, v);
+        let finite = [
+            local.position,
+            local.du,
+            local.dv,
+            local.duu,
+            local.duv,
+            local.dvv,
+        ]
+        .iter()
+        .all(|p| p.is_finite());
+        Ok(if finite {
+            local
+        } else {
+            self.jet_about(Point3::ZERO, u, v)
+        })
+    }
+
+    /// de Casteljau (two derivatives) on the points relative to `origin`,
+    /// the position shifted back.
+    fn jet_about(&self, origin: Point3<R>, u: R, v: R) -> SurfaceJet<R> {
         let mut rows = [[Point3::ZERO; K]; 3];
-        for (i, points) in self.points.iter().enumerate() {
+        for (i, points) in self.relative_to(origin).iter().enumerate() {
             let [p, pv, pvv] = casteljau2(points, v);
             rows[0][i] = p;
             rows[1][i] = pv;
@@ -139,13 +162,13 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
         let [position, du, duu] = casteljau2(&rows[0], u);
         let [dv, duv, _] = casteljau2(&rows[1], u);
         let [dvv, _, _] = casteljau2(&rows[2], u);
-        Ok(SurfaceJet {
-            position,
+        SurfaceJet {
+            position: position + origin,
             du,
             dv,
             duu,
             duv,
             dvv,
-        })
+        }
     }
 }

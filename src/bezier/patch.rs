@@ -65,22 +65,60 @@ fn casteljau<R: Real, const K: usize>(pts: &[Point3<R>; K], t: R) -> (Point3<R>,
 }
 
 impl<R: Real, const K: usize> TensorPatch<R, K> {
+    /// The control points relative to `origin`.
+    pub(crate) fn relative_to(&self, origin: Point3<R>) -> [[Point3<R>; K]; K] {
+        self.points.map(|row| row.map(|p| p - origin))
+    }
+
+    /// The first control point: evaluation runs on the points relative to it
+    /// ([`Self::relative_to`]), so every de Casteljau step rounds relative
+    /// to the patch's size instead of to its distance from the origin and
+    /// the partials (differences of nearby points) keep the precision of
+    /// the control points. For a patch of size `h` at distance `|x|` the
+    /// partials' rounding drops from about `ε|x|/h` to `ε`, which is what
+    /// makes `f32` normals of small patches usable; the position gets one
+    /// more rounding (`origin + local`). Where a difference overflows (the
+    /// points span more than the scalar's range) evaluation runs about zero.
+    pub(crate) fn origin(&self) -> Point3<R> {
+        match self.points.first().and_then(|row| row.first()) {
+            Some(&p) => p,
+            None => Point3::ZERO,
+        }
+    }
+
     /// Position and partials at `(u, v) ∈ [0,1]²`; [`Error::OutOfDomain`] otherwise.
+    /// de Casteljau's algorithm on the control points relative to the first
+    /// one ([`Self::origin`]), the position shifted back at the end.
     pub fn evaluate(&self, u: R, v: R) -> Result<PatchPoint<R>, Error> {
         let inside = |t: R| t.is_finite() && t >= R::ZERO && t <= R::ONE;
         if !inside(u) || !inside(v) {
             return Err(Error::OutOfDomain);
         }
+        let local = self.evaluate_about(self.origin(), u, v);
+        if local.position.is_finite() && local.du.is_finite() && local.dv.is_finite() {
+            Ok(local)
+        } else {
+            Ok(self.evaluate_about(Point3::ZERO, u, v))
+        }
+    }
+
+    /// de Casteljau on the points relative to `origin`, shifted back.
+    fn evaluate_about(&self, origin: Point3<R>, u: R, v: R) -> PatchPoint<R> {
+        let points = self.relative_to(origin);
         let mut rows = [Point3::ZERO; K];
         let mut rows_dv = [Point3::ZERO; K];
         for i in 0..K {
-            let (p, d) = casteljau(&self.points[i], v);
+            let (p, d) = casteljau(&points[i], v);
             rows[i] = p;
             rows_dv[i] = d;
         }
         let (position, du) = casteljau(&rows, u);
         let (dv, _) = casteljau(&rows_dv, u);
-        Ok(PatchPoint { position, du, dv })
+        PatchPoint {
+            position: position + origin,
+            du,
+            dv,
+        }
     }
 
     /// Position at `(u, v)`.
