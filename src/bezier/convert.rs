@@ -45,7 +45,9 @@ fn span<R: Real>(p: [Point3<R>; 4], w: Sixths<R>) -> [Point3<R>; 4] {
 /// about zero.
 pub fn bspline_to_bezier_cubic<R: Real>(d: &[[Point3<R>; 4]; 4]) -> [[Point3<R>; 4]; 4] {
     let local = convert_about(d, d[1][1]);
-    if local.iter().flatten().all(|p| p.is_finite()) {
+    // One test for every coordinate: their sum is finite only if each is.
+    let sum = local.iter().flatten().fold(Point3::ZERO, |s, &p| s + p);
+    if (sum.0[0] + sum.0[1] + sum.0[2]).is_finite() {
         local
     } else {
         // The points span more than the scalar's range: about zero.

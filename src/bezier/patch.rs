@@ -65,13 +65,8 @@ fn casteljau<R: Real, const K: usize>(pts: &[Point3<R>; K], t: R) -> (Point3<R>,
 }
 
 impl<R: Real, const K: usize> TensorPatch<R, K> {
-    /// The control points relative to `origin`.
-    pub(crate) fn relative_to(&self, origin: Point3<R>) -> [[Point3<R>; K]; K] {
-        self.points.map(|row| row.map(|p| p - origin))
-    }
-
-    /// The first control point: evaluation runs on the points relative to it
-    /// ([`Self::relative_to`]), so every de Casteljau step rounds relative
+    /// The first control point: evaluation runs on the points relative to
+    /// it, so every de Casteljau step rounds relative
     /// to the patch's size instead of to its distance from the origin and
     /// the partials (differences of nearby points) keep the precision of
     /// the control points. For a patch of size `h` at distance `|x|` the
@@ -95,7 +90,10 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
             return Err(Error::OutOfDomain);
         }
         let local = self.evaluate_about(self.origin(), u, v);
-        if local.position.is_finite() && local.du.is_finite() && local.dv.is_finite() {
+        // One test for the nine coordinates: their sum is finite only if
+        // each is (a sum that overflows merely takes the slower way).
+        let sum = local.position + local.du + local.dv;
+        if (sum.0[0] + sum.0[1] + sum.0[2]).is_finite() {
             Ok(local)
         } else {
             Ok(self.evaluate_about(Point3::ZERO, u, v))
@@ -103,12 +101,12 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
     }
 
     /// de Casteljau on the points relative to `origin`, shifted back.
+    #[inline]
     fn evaluate_about(&self, origin: Point3<R>, u: R, v: R) -> PatchPoint<R> {
-        let points = self.relative_to(origin);
         let mut rows = [Point3::ZERO; K];
         let mut rows_dv = [Point3::ZERO; K];
         for i in 0..K {
-            let (p, d) = casteljau(&points[i], v);
+            let (p, d) = casteljau(&self.points[i].map(|p| p - origin), v);
             rows[i] = p;
             rows_dv[i] = d;
         }
