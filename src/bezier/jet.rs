@@ -143,7 +143,6 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
 
     /// de Casteljau (two derivatives) on the points relative to `origin`,
     /// the position shifted back.
-    #[inline]
     fn jet_about(&self, origin: Point3<R>, u: R, v: R) -> SurfaceJet<R> {
         let mut rows = [[Point3::ZERO; K]; 3];
         for (i, points) in self.points.iter().enumerate() {

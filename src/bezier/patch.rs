@@ -101,7 +101,6 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
     }
 
     /// de Casteljau on the points relative to `origin`, shifted back.
-    #[inline]
     fn evaluate_about(&self, origin: Point3<R>, u: R, v: R) -> PatchPoint<R> {
         let mut rows = [Point3::ZERO; K];
         let mut rows_dv = [Point3::ZERO; K];
