@@ -1,9 +1,10 @@
 //! Pictures of [`Shape`]s shaded per pixel from the exact patches:
 //! `capdiv render` and `capdiv compare`.
 //!
-//! 1. Every patch is tessellated on a `grid × grid` parameter grid; each
-//!    vertex carries (patch index, `u`, `v`). Hole edges get a fan of
-//!    triangles to the cap's limit point, tagged as hole.
+//! 1. Every patch is tessellated on a `grid × grid` parameter grid by
+//!    `capdiv_mesh::tessellate`; each vertex carries (patch index, `u`,
+//!    `v`). Hole edges get a fan of triangles to the cap's limit point,
+//!    tagged as hole.
 //! 2. The triangles are rasterised ([`crate::raster`]: orthographic camera of
 //!    [`crate::camera`], z-buffer, 2×2 supersampling); a pixel keeps the
 //!    patch index and the barycentric interpolation of `(u, v)`.
@@ -26,7 +27,10 @@ pub use crate::camera::{Camera, Focus, Up};
 use crate::raster::{downsample, ZBuffer};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
+use capdiv::Point3;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
+use capdiv_mesh::tessellate::{Face, TessPatch};
+use capdiv_mesh::PatchUv;
 
 /// What is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,56 +66,40 @@ struct Vert {
     uv: [f64; 2],
 }
 
+/// The parameters given to a cap's limit point, outside every patch's
+/// square: they mark the triangles of the hole fans.
+const HOLE_UV: [f64; 2] = [-1.0, -1.0];
+
+/// The shape's triangles, by `capdiv_mesh::tessellate` (`grid` segments per
+/// patch side, hole edges fanned to the limit point), each corner with its
+/// patch and parameters (its patch's own `(u, v)` as texture coordinates,
+/// so the tessellation keeps every patch's vertices apart); the fans'
+/// corners belong to [`HOLE`].
 fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
-    let g = grid.max(1);
-    let mut tris = Vec::new();
-    for (k, sp) in shape.patches.iter().enumerate() {
-        let at = |a: usize, b: usize| {
-            let uv = [a as f64 / g as f64, b as f64 / g as f64];
-            let p = sp
-                .geometry
-                .jet(uv[0], uv[1])
-                .map(|j| j.position.0)
-                .unwrap_or([f64::NAN; 3]);
-            Vert {
-                p,
-                patch: k as u32,
-                uv,
-            }
+    let square = PatchUv {
+        corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        hole: HOLE_UV,
+    };
+    let patches = shape.patches.iter().enumerate().map(|(k, sp)| TessPatch {
+        hole: sp.hole,
+        hole_point: Point3(sp.hole_point),
+        uv: Some(square),
+        ..TessPatch::new(sp.geometry, k as u32)
+    });
+    let t = capdiv_mesh::tessellate::tessellate(patches, grid, 0.0);
+    let mut tris = Vec::with_capacity(2 * t.faces.len());
+    for (face, &patch) in t.faces.iter().zip(&t.tags) {
+        let hole = face.corners().iter().any(|&v| t.uvs[v as usize] == HOLE_UV);
+        let vert = |v: u32| Vert {
+            p: t.positions[v as usize].0,
+            patch: if hole { HOLE } else { patch },
+            uv: t.uvs[v as usize],
         };
-        let pts: Vec<Vec<Vert>> = (0..=g)
-            .map(|a| (0..=g).map(|b| at(a, b)).collect())
-            .collect();
-        for a in 0..g {
-            for b in 0..g {
-                let (p00, p10, p11, p01) =
-                    (pts[a][b], pts[a + 1][b], pts[a + 1][b + 1], pts[a][b + 1]);
-                tris.push([p00, p10, p11]);
-                tris.push([p00, p11, p01]);
-            }
-        }
-        // Hole fans: edge e's samples, then the limit point.
-        for e in 0..4u8 {
-            if sp.hole & (1 << e) == 0 {
-                continue;
-            }
-            let centre = Vert {
-                p: sp.hole_point,
-                patch: HOLE,
-                uv: [0.0; 2],
-            };
-            for c in 0..g {
-                let (a0, a1) = match e {
-                    0 => ((c, 0), (c + 1, 0)),
-                    1 => ((g, c), (g, c + 1)),
-                    2 => ((c, g), (c + 1, g)),
-                    _ => ((0, c), (0, c + 1)),
-                };
-                let mut x = pts[a0.0][a0.1];
-                let mut y = pts[a1.0][a1.1];
-                x.patch = HOLE;
-                y.patch = HOLE;
-                tris.push([x, y, centre]);
+        match *face {
+            Face::Tri([a, b, c]) => tris.push([vert(a), vert(b), vert(c)]),
+            Face::Quad([a, b, c, d]) => {
+                tris.push([vert(a), vert(b), vert(c)]);
+                tris.push([vert(a), vert(c), vert(d)]);
             }
         }
     }
