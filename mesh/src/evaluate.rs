@@ -73,6 +73,12 @@ pub struct PatchRecord<R> {
     pub hole: u8,
     /// The cap's limit point (where `hole` edges are closed to).
     pub hole_point: Point3<R>,
+    /// Bit `k`: edge `k` lies on the surface's boundary. Bit `4 + k`: corner
+    /// `k` (where edge `k` starts) is a boundary vertex where exactly two
+    /// patches meet. Set for regular patches of the analysed level (0
+    /// elsewhere: unknown); a streaming welder lets go of samples there
+    /// without waiting for the end ([`crate::tessellate::stream`]).
+    pub boundary: u8,
     /// Index of the cap it belongs to (polar caps first, then EG and
     /// Catmull-Clark caps, in plan order), if any.
     pub cap: Option<u32>,
@@ -426,7 +432,7 @@ pub(crate) fn emit_regular<R: Real>(
         } else {
             Point3::ZERO
         };
-        sink.patch(&record(
+        let mut rec = record(
             PatchKind::Regular,
             level0 + r.level,
             &r.chart,
@@ -436,7 +442,13 @@ pub(crate) fn emit_regular<R: Real>(
             r.hole,
             hole_point,
             None,
-        ));
+        );
+        if r.boundary != 0 {
+            let map = &r.chart.map;
+            rec.boundary =
+                map_edges(map, r.boundary & 0xf) | map_corners(map, r.boundary >> 4) << 4;
+        }
+        sink.patch(&rec);
     }
 }
 
@@ -847,6 +859,23 @@ fn map_edges(map: &Affine, bits: u8) -> u8 {
         .fold(0, |acc, k| acc | (1 << edge_image(map, k)))
 }
 
+/// Corner bits (bit `k`: corner `k`, where edge `k` starts) re-expressed in
+/// the image frame.
+fn map_corners(map: &Affine, bits: u8) -> u8 {
+    let c = map.apply(0.5, 0.5);
+    (0..4u8).filter(|k| bits & (1 << k) != 0).fold(0, |acc, k| {
+        let (s, t) = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)][k as usize];
+        let p = map.apply(s, t);
+        let image = match (p[0] > c[0], p[1] > c[1]) {
+            (false, false) => 0,
+            (true, false) => 1,
+            (true, true) => 2,
+            (false, true) => 3,
+        };
+        acc | (1 << image)
+    })
+}
+
 /// A patch given over `rect` of a face-local frame, placed through `chart`.
 #[inline]
 #[allow(clippy::too_many_arguments)]
@@ -888,6 +917,7 @@ where
         },
         hole: if identity { hole } else { map_edges(map, hole) },
         hole_point,
+        boundary: 0,
         cap,
     }
 }

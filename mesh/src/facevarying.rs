@@ -322,6 +322,7 @@ mod tests {
             finer: 0,
             hole: 1 << 3,
             hole_point: capdiv::Point3::ZERO,
+            boundary: 0,
             cap: None,
         };
         let uv = fv.patch(&p);

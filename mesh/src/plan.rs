@@ -139,6 +139,11 @@ pub struct RegularPlan {
     /// Working-point index of that vertex's limit point (unused without
     /// `hole` bits).
     pub hole_point: u32,
+    /// Bit `k`: edge `k` lies on the surface's boundary. Bit `4 + k`:
+    /// corner `k` is a boundary vertex of exactly two faces (a straight
+    /// piece of boundary, half a turn of surface around it). Known for the
+    /// analysed level's faces; 0 for the adaptive refinement's.
+    pub boundary: u8,
 }
 
 /// A C²PS cap.
@@ -584,11 +589,18 @@ impl<'t> SurfacePlan<'t> {
                     };
                 }
             }
-            let mut finer = 0u8;
+            let (mut finer, mut boundary) = (0u8, 0u8);
             for k in 0..4 {
-                let tw = level_topo.twin(level_topo.face_half_edge(f, k));
-                if tw != NONE && cap_face[level_topo.face_of(tw) as usize] {
+                let h = level_topo.face_half_edge(f, k);
+                let tw = level_topo.twin(h);
+                if tw == NONE {
+                    boundary |= 1 << k;
+                } else if cap_face[level_topo.face_of(tw) as usize] {
                     finer |= 1 << k;
+                }
+                let v = level_topo.origin(h) as usize;
+                if level_topo.is_boundary(v) && level_topo.vertex_face_count(v) == 2 {
+                    boundary |= 1 << (4 + k);
                 }
             }
             self.regular.push(RegularPlan {
@@ -598,6 +610,7 @@ impl<'t> SurfacePlan<'t> {
                 level: 0,
                 hole: 0,
                 hole_point: 0,
+                boundary,
             });
         }
         for c in &pass.polar {
@@ -694,6 +707,7 @@ impl<'t> SurfacePlan<'t> {
                 level: p.level,
                 hole: p.hole,
                 hole_point: p.hole_point,
+                boundary: 0,
             });
         }
         // A vertex of the analysed level whose cap came a level or more

@@ -318,6 +318,30 @@ fn weld_table_grows_with_the_front_not_the_mesh() {
     assert!(big.1 * 10 < big.0, "{big:?}");
 }
 
+/// Samples on a boundary marked by the records ([`PatchRecord::boundary`])
+/// leave the weld table once their patches are done: sixteen disjoint copies
+/// of the feature mix (each with an open disk) hold about what one copy
+/// holds. Without the marks each copy leaves its whole boundary behind.
+#[test]
+fn weld_table_lets_go_of_marked_boundaries() {
+    let run = |copies: usize, marks: bool| {
+        let mesh = samples::feature_mix(1077 * copies);
+        let mut ps = patches(&mesh, 2);
+        if !marks {
+            for p in &mut ps {
+                p.boundary = 0;
+            }
+        }
+        let (t, s) = streamed(&ps, 2, weld_tolerance(&mesh));
+        (t.positions.len(), s.peak_weld)
+    };
+    let (one, sixteen) = (run(1, true), run(16, true));
+    assert!(sixteen.0 > 14 * one.0, "{one:?} {sixteen:?}");
+    assert!(sixteen.1 < 2 * one.1, "{one:?} {sixteen:?}");
+    let unmarked = run(16, false);
+    assert!(unmarked.1 > 4 * sixteen.1, "{unmarked:?} {sixteen:?}");
+}
+
 /// [`SurfacePlan::order`] lists every regular patch and every cap once, and
 /// the evaluator gives each cap's record after its patches.
 #[test]

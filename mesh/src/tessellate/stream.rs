@@ -22,10 +22,14 @@
 //! surface's boundary (until [`StreamTessellator::finish`]), and the
 //! corners of a cap's last hole and the hole's point, whose fans span an
 //! angle of the hole's shape: they stay until the group of patches they
-//! belong to ends (a cap's patches, or a run of patches of no cap).
+//! belong to ends (a cap's patches, or a run of patches of no cap). A patch
+//! whose record marks its boundary edges ([`PatchRecord::boundary`]) adds
+//! the outside's 2 to the samples inside them, and 1 per boundary edge at a
+//! corner marked as two patches' boundary corner: those leave too.
 //!
 //! So the table holds the open edges between the patches done and the
-//! patches to come, and the surface's boundary. A [`crate::Evaluator`]
+//! patches to come, and what the records do not mark of the surface's
+//! boundary. A [`crate::Evaluator`]
 //! gives the regular patches and caps by input face, the faces taken
 //! breadth first ([`crate::SurfacePlan::order`]): the open edges are those
 //! of a front of input faces (for a mesh of `F` faces about `√F` of them)
@@ -222,6 +226,21 @@ impl<R: Real> StreamTessellator<R> {
     ///
     /// If the vertices outnumber `u32::MAX`.
     pub fn push(&mut self, p: &TessPatch<R>, group: Option<u32>, sink: &mut dyn MeshSink<R>) {
+        self.push_on_boundary(p, group, 0, sink);
+    }
+
+    /// [`Self::push`] of a patch with `boundary` bits as
+    /// [`PatchRecord::boundary`]: samples inside a boundary edge, and at a
+    /// boundary corner of two patches once both are done, leave the table
+    /// at once instead of at [`Self::finish`]. Wrong bits make a vertex
+    /// leave before its last sample, which then makes a second vertex.
+    pub fn push_on_boundary(
+        &mut self,
+        p: &TessPatch<R>,
+        group: Option<u32>,
+        boundary: u8,
+        sink: &mut dyn MeshSink<R>,
+    ) {
         if self.group != Some(group) {
             self.end_group(sink);
             self.group = Some(group);
@@ -231,7 +250,7 @@ impl<R: Real> StreamTessellator<R> {
         self.raw.faces.clear();
         self.raw.tags.clear();
         self.raw.push(p);
-        self.classify(p);
+        self.classify(p, boundary);
         let count = self.raw.positions.len();
         self.summary.samples += count;
         self.local.clear();
@@ -264,7 +283,7 @@ impl<R: Real> StreamTessellator<R> {
             // The streaming weld carries positions and normals only.
             uv: None,
         };
-        self.push(&t, p.cap, sink);
+        self.push_on_boundary(&t, p.cap, p.boundary, sink);
     }
 
     /// Ends the current group: its holes' points and corners leave the
@@ -321,8 +340,11 @@ impl<R: Real> StreamTessellator<R> {
 
     /// Turns and pins of the current patch's samples, from the layout of
     /// [`Raw::push`]: `(n+1)²` grid points (`a` along `u` after `a`), then
-    /// `n` midpoints per finer edge in edge order, then the hole point.
-    fn classify(&mut self, p: &TessPatch<R>) {
+    /// `n` midpoints per finer edge in edge order, then the hole point. A
+    /// boundary edge adds the 2 of the outside to its inner samples, and 1 to
+    /// each end that is a boundary corner of two patches (whose other
+    /// boundary edge adds the other 1).
+    fn classify(&mut self, p: &TessPatch<R>, boundary: u8) {
         let n = self.grid;
         let side = n + 1;
         let count = self.raw.positions.len();
@@ -342,13 +364,33 @@ impl<R: Real> StreamTessellator<R> {
             self.turns.push(t);
             self.pin.push(false);
         }
+        let idx = |a: usize, b: usize| a * side + b;
+        if boundary & 0xf != 0 {
+            let corner = [idx(0, 0), idx(n, 0), idx(n, n), idx(0, n)];
+            for e in (0..4).filter(|e| boundary & (1 << e) != 0) {
+                for c in 1..n {
+                    let k = match e {
+                        0 => idx(c, 0),
+                        1 => idx(n, c),
+                        2 => idx(c, n),
+                        _ => idx(0, c),
+                    };
+                    self.turns[k] = self.turns[k].saturating_add(2);
+                }
+                for end in [e, (e + 1) % 4] {
+                    if boundary & (1 << (4 + end)) != 0 {
+                        let k = corner[end];
+                        self.turns[k] = self.turns[k].saturating_add(1);
+                    }
+                }
+            }
+        }
         if p.hole & 0xf == 0 {
             return;
         }
         // The hole point.
         self.turns[count - 1] = 0;
         self.pin[count - 1] = true;
-        let idx = |a: usize, b: usize| a * side + b;
         let mut mid = side * side;
         for e in 0..4u8 {
             let finer = p.finer & (1 << e) != 0;

@@ -507,6 +507,7 @@ mod tests {
             finer: 0,
             hole,
             hole_point: Point3([-1.0, -1.0, 0.0]),
+            boundary: 0,
             cap: None,
         }
     }
