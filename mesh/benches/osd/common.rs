@@ -8,7 +8,6 @@ use super::osd;
 use capdiv_mesh::{samples, EdgeCrease, MeshInput, VertexCorner};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::{Duration, Instant};
 
 /// capdiv's cap depth and OpenSubdiv's isolation level.
@@ -258,29 +257,7 @@ pub fn time(mut f: impl FnMut()) -> (f64, usize) {
 /// source is newer.
 pub fn helper() -> PathBuf {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/osd/osd_bench.cpp");
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let bin = dir.join("osd-bench");
-    let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    if modified(&bin).is_some_and(|b| modified(&src).is_some_and(|s| b >= s)) {
-        return bin;
-    }
-    std::fs::create_dir_all(dir).expect("create CARGO_TARGET_TMPDIR");
-    let tmp = dir.join(format!("osd-bench.{}.tmp", std::process::id()));
-    let out = Command::new("g++")
-        .args(["-O2", "-std=c++14"])
-        .arg(&src)
-        .arg("-o")
-        .arg(&tmp)
-        .arg("-losdCPU")
-        .output()
-        .expect("run g++ (install g++ and libosd-dev)");
-    assert!(
-        out.status.success(),
-        "building osd_bench.cpp failed (install libosd-dev):\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    std::fs::rename(&tmp, &bin).expect("rename the helper");
-    bin
+    osd::compile(&src, "osd-bench")
 }
 
 /// Writes the job file of mesh `name` (isolation [`DEPTH`]) and returns its

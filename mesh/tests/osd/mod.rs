@@ -124,10 +124,14 @@ pub fn source() -> PathBuf {
 /// newer than the binary). Panics when OpenSubdiv is not installed.
 pub fn oracle() -> &'static Path {
     static BINARY: OnceLock<PathBuf> = OnceLock::new();
-    BINARY.get_or_init(build)
+    BINARY.get_or_init(|| compile(&source(), "osd-oracle"))
 }
 
-fn build() -> PathBuf {
+/// `src` (a C++ program over OpenSubdiv) compiled by `g++ -O2 -losdCPU` to
+/// `CARGO_TARGET_TMPDIR/name`, unless that binary is newer than `src`.
+/// Panics when OpenSubdiv or g++ is not installed. The oracle and the
+/// benches' helper are built this way.
+pub fn compile(src: &Path, name: &str) -> PathBuf {
     let headers = ["/usr/include/opensubdiv", "/usr/local/include/opensubdiv"];
     assert!(
         headers
@@ -135,21 +139,20 @@ fn build() -> PathBuf {
             .any(|h| Path::new(h).join("far/patchTable.h").exists()),
         "OpenSubdiv headers not found in {headers:?}; {INSTALL}"
     );
-    let src = source();
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
-    let bin = dir.join("osd-oracle");
+    let bin = dir.join(name);
     let modified = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    let src_time = modified(&src).unwrap_or_else(|| panic!("cannot read {}", src.display()));
+    let src_time = modified(src).unwrap_or_else(|| panic!("cannot read {}", src.display()));
     if modified(&bin).is_some_and(|t| t >= src_time) {
         return bin;
     }
     std::fs::create_dir_all(dir).expect("create CARGO_TARGET_TMPDIR");
     // Build under a private name and rename: other test binaries may be
-    // building or running the oracle at the same time.
-    let tmp = dir.join(format!("osd-oracle.{}.tmp", std::process::id()));
+    // building or running the same program at the same time.
+    let tmp = dir.join(format!("{name}.{}.tmp", std::process::id()));
     let out = Command::new("g++")
         .args(["-O2", "-std=c++14"])
-        .arg(&src)
+        .arg(src)
         .arg("-o")
         .arg(&tmp)
         .arg("-losdCPU")
@@ -157,10 +160,11 @@ fn build() -> PathBuf {
         .unwrap_or_else(|e| panic!("cannot run g++ ({e}); install g++ and libosd-dev"));
     assert!(
         out.status.success(),
-        "building the OpenSubdiv oracle failed ({INSTALL}):\n{}",
+        "building {} failed ({INSTALL}):\n{}",
+        src.display(),
         String::from_utf8_lossy(&out.stderr)
     );
-    std::fs::rename(&tmp, &bin).expect("rename the oracle binary");
+    std::fs::rename(&tmp, &bin).expect("rename the compiled program");
     bin
 }
 
