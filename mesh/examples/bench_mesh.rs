@@ -1,0 +1,141 @@
+//! Writes a benchmark mesh as Wavefront OBJ to stdout, for
+//! `scripts/surface-scaling.sh`:
+//!
+//! - `mixed FACES`: [`samples::feature_mix`] of at least `FACES` faces
+//!   (quads with valence-3 and valence-7 points, triangle fans around
+//!   valence-12 poles);
+//! - `triangles FACES`: a torus of about `FACES` triangles (a `k × k` quad
+//!   torus with every quad split along a diagonal: every vertex of
+//!   valence 6, so every vertex and every face centre is a cap);
+//! - `icosphere LEVELS`: the icosahedron split `LEVELS` times into four on
+//!   the unit sphere (`20·4^LEVELS` triangles).
+//!
+//! `cargo run --release -p capdiv-mesh --example bench_mesh -- mixed 10000 > mixed-1e4.obj`
+
+use capdiv_mesh::{samples, MeshInput};
+use std::collections::HashMap;
+use std::io::{BufWriter, Write};
+
+/// A torus of `2·k²` triangles (`k ≥ 3`).
+fn triangle_torus(k: usize) -> MeshInput {
+    let k = k.max(3);
+    let (big, small) = (3.0, 1.0);
+    let mut vertices = Vec::with_capacity(k * k);
+    for i in 0..k {
+        let a = std::f64::consts::TAU * i as f64 / k as f64;
+        for j in 0..k {
+            let b = std::f64::consts::TAU * j as f64 / k as f64;
+            let r = big + small * b.cos();
+            vertices.push([r * a.cos(), r * a.sin(), small * b.sin()]);
+        }
+    }
+    let at = |i: usize, j: usize| ((i % k) * k + j % k) as u32;
+    let mut faces = Vec::with_capacity(2 * k * k);
+    for i in 0..k {
+        for j in 0..k {
+            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            faces.push(vec![a, b, c]);
+            faces.push(vec![a, c, d]);
+        }
+    }
+    MeshInput::new(vertices, faces)
+}
+
+/// The unit icosahedron split `levels` times into four.
+fn icosphere(levels: u32) -> MeshInput {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let unit = |p: [f64; 3]| {
+        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        [p[0] / r, p[1] / r, p[2] / r]
+    };
+    let mut vertices: Vec<[f64; 3]> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .map(unit)
+    .to_vec();
+    let mut faces: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut next = Vec::with_capacity(4 * faces.len());
+        for [a, b, c] in faces {
+            let mut m = |x: u32, y: u32| {
+                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
+                    let (p, q) = (vertices[x as usize], vertices[y as usize]);
+                    vertices.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
+                    (vertices.len() - 1) as u32
+                })
+            };
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        faces = next;
+    }
+    MeshInput::new(vertices, faces.into_iter().map(|f| f.to_vec()).collect())
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let number = |i: usize| -> usize {
+        args.get(i)
+            .and_then(|s| s.parse().ok())
+            .unwrap_or_else(|| usage())
+    };
+    let mesh = match args.first().map(String::as_str) {
+        Some("mixed") => samples::feature_mix(number(1)),
+        Some("triangles") => {
+            let k = ((number(1) as f64 / 2.0).sqrt().round()) as usize;
+            triangle_torus(k)
+        }
+        Some("icosphere") => icosphere(number(1) as u32),
+        _ => usage(),
+    };
+    let mut out = BufWriter::new(std::io::stdout().lock());
+    for p in &mesh.vertices {
+        writeln!(out, "v {} {} {}", p[0], p[1], p[2]).expect("stdout");
+    }
+    for f in &mesh.faces {
+        write!(out, "f").expect("stdout");
+        for v in f {
+            write!(out, " {}", v + 1).expect("stdout");
+        }
+        writeln!(out).expect("stdout");
+    }
+    out.flush().expect("stdout");
+}
+
+fn usage() -> ! {
+    eprintln!("usage: bench_mesh (mixed FACES | triangles FACES | icosphere LEVELS)");
+    std::process::exit(2)
+}
