@@ -26,7 +26,7 @@ use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, NetStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
-use capdiv_mesh::tessellate::PatchGeometry;
+use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
 };
@@ -41,7 +41,7 @@ pub struct ShapePatch {
     pub level: u32,
     /// Whether it is a ring patch of the cap the curvature table follows.
     pub ring: bool,
-    /// Edges (bit 0: v=0, 1: u=1, 2: v=1, 3: u=0) bordering the last hole.
+    /// Edges (`capdiv_mesh::tessellate::edge_bit`) bordering the last hole.
     pub hole: u8,
     /// The limit point the hole closes to.
     pub hole_point: [f64; 3],
@@ -224,12 +224,16 @@ impl PolarJob<'_> {
             if net.links_held() >= 5 {
                 let cols = net.valence();
                 for (k, p) in net.ring_patches().map_err(kernel)?.enumerate() {
-                    let last = level == self.depth && k < cols;
+                    let last = level == self.depth;
                     patches.push(ShapePatch {
                         geometry: PatchGeometry::Cubic(p),
                         level,
                         ring: true,
-                        hole: if last { 1 << 3 } else { 0 },
+                        hole: if last {
+                            ring_inner_edges(RingLayout::Polar, k, 2 * cols)
+                        } else {
+                            0
+                        },
                         hole_point,
                     });
                 }
@@ -261,12 +265,12 @@ impl PolarJob<'_> {
     }
 }
 
-/// EG/CC ring piece `k % 3`'s hole edges on the last ring.
+/// EG/CC ring patch `k`'s hole edges on the last ring.
 fn ring_hole(k: usize, last: bool) -> u8 {
-    match (last, k % 3) {
-        (true, 0) => 1 << 3,
-        (true, 1) => 1,
-        _ => 0,
+    if last {
+        ring_inner_edges(RingLayout::Sectors, k, 0)
+    } else {
+        0
     }
 }
 

@@ -120,14 +120,7 @@ fn evaluate<R: FuzzReal>(
         return None;
     }
     let t = tessellate(
-        sink.patches.iter().map(|p| TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag: p.level,
-            uv: None,
-        }),
+        sink.patches.iter().map(|p| TessPatch::of_record(p, p.level)),
         grid,
         // Relative to the mesh's size, as the CLI welds (an absolute
         // tolerance makes the weld quadratic on tiny meshes: every sample in

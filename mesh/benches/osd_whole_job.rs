@@ -180,14 +180,7 @@ struct Keep(Vec<TessPatch<f64>>);
 
 impl SurfaceSink<f64> for Keep {
     fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0.push(TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag: p.level,
-            uv: None,
-        });
+        self.0.push(TessPatch::of_record(p, p.level));
     }
     fn cap(&mut self, _: &CapRecord<f64>) {}
 }

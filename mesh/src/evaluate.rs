@@ -16,7 +16,7 @@ use crate::error::{Indices, Names};
 use crate::hole;
 use crate::mem;
 use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan, Unit};
-use crate::tessellate::PatchGeometry;
+use crate::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
@@ -67,9 +67,9 @@ pub struct PatchRecord<R> {
     pub domain: [f64; 4],
     /// Bézier control points, oriented to the input face.
     pub geometry: PatchGeometry<R>,
-    /// Edges (0: v=0, 1: u=1, 2: v=1, 3: u=0) met by two half-size patches.
+    /// Edges ([`crate::tessellate::edge_bit`]) met by two half-size patches.
     pub finer: u8,
-    /// Edges bordering the cap's last hole.
+    /// Edges ([`crate::tessellate::edge_bit`]) bordering the cap's last hole.
     pub hole: u8,
     /// The cap's limit point (where `hole` edges are closed to).
     pub hole_point: Point3<R>,
@@ -534,7 +534,7 @@ impl<R: Real> Scratch<R> {
                         ((c % per) as f64) / per as f64,
                         ((c % per) + 1) as f64 / per as f64,
                     );
-                    let inner = if span == 0 { 1 << 3 } else { 0 };
+                    let inner = ring_inner_edges(RingLayout::Polar, span * cols + c, 2 * cols);
                     let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
                     let chart = if r1 <= 1.0 || p.quads.is_empty() {
                         FaceChart {
@@ -624,13 +624,7 @@ impl<R: Real> Scratch<R> {
                 .copied()
                 .unwrap_or(FaceChart::input(0));
             let rect = [dom.x0, dom.x0 + dom.size, dom.y0, dom.y0 + dom.size];
-            // Piece 0 ([½,1]×[0,½]) meets the next ring along u = 0, piece 1
-            // ([0,½]×[½,1]) along v = 0.
-            let inner = match k % 3 {
-                0 => 1 << 3,
-                1 => 1,
-                _ => 0,
-            };
+            let inner = ring_inner_edges(RingLayout::Sectors, k, 3 * n);
             let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
             let rec = match geometry {
                 PatchGeometry::Cubic(p) => record(

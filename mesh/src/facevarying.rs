@@ -320,7 +320,7 @@ mod tests {
                 points: [[capdiv::Point3::ZERO; 4]; 4],
             }),
             finer: 0,
-            hole: 1 << 3,
+            hole: crate::tessellate::edge_bit(crate::tessellate::EDGE_U0),
             hole_point: capdiv::Point3::ZERO,
             boundary: 0,
             cap: None,

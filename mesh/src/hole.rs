@@ -9,13 +9,11 @@
 
 use capdiv::{Point3, Real, TensorPatch};
 
-/// Edge `v = 0` of a patch's own square (control points `[i][0]`).
-pub(crate) const EDGE_V0: u8 = 0;
-/// Edge `u = 0` (control points `[0][j]`).
-pub(crate) const EDGE_U0: u8 = 3;
+pub(crate) use crate::tessellate::{EDGE_U0, EDGE_V0};
 
 /// The largest distance from `center` to a control point of edge `edge`
-/// ([`EDGE_V0`] or [`EDGE_U0`]) of `patch`, in `f64`.
+/// ([`EDGE_V0`]: control points `[i][0]`, or [`EDGE_U0`]: `[0][j]`) of
+/// `patch`, in `f64`.
 pub(crate) fn edge_radius<R: Real, const K: usize>(
     patch: &TensorPatch<R, K>,
     edge: u8,

@@ -93,14 +93,7 @@ fn check_coverage(name: &str, m: &MeshInput, plan: &SurfacePlan<'_>, c: &Collect
 }
 
 fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {
-    let patches = c.patches.iter().map(|p| TessPatch {
-        geometry: p.geometry,
-        finer: p.finer,
-        hole: p.hole,
-        hole_point: p.hole_point,
-        tag: p.face,
-        uv: None,
-    });
+    let patches = c.patches.iter().map(|p| TessPatch::of_record(p, p.face));
     tessellate(patches, 3, 1e-9)
 }
 

@@ -69,14 +69,9 @@ fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge>
             .flatten()
             .fold(0.0f64, |m, c| m.max(c.abs()));
         let t = tessellate(
-            sink.patches.iter().map(|p| TessPatch {
-                geometry: p.geometry,
-                finer: p.finer,
-                hole: p.hole,
-                hole_point: p.hole_point,
-                tag: p.level,
-                uv: None,
-            }),
+            sink.patches
+                .iter()
+                .map(|p| TessPatch::of_record(p, p.level)),
             1,
             1e-9 * size,
         );

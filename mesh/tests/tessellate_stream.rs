@@ -48,14 +48,7 @@ fn patches(mesh: &MeshInput, depth: u32) -> Vec<PatchRecord<f64>> {
 }
 
 fn tess_patch(p: &PatchRecord<f64>) -> TessPatch<f64> {
-    TessPatch {
-        geometry: p.geometry,
-        finer: p.finer,
-        hole: p.hole,
-        hole_point: p.hole_point,
-        tag: p.level,
-        uv: None,
-    }
+    TessPatch::of_record(p, p.level)
 }
 
 /// The CLI's weld tolerance: 1e-9 of the bounding box's largest side.

@@ -113,12 +113,8 @@ fn surface(m: &MeshInput) -> (Vec<PatchRecord<f64>>, FaceVarying) {
 fn tess(patches: &[PatchRecord<f64>], fv: Option<&FaceVarying>) -> Tessellation<f64> {
     tessellate(
         patches.iter().map(|p| TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag: p.face,
             uv: fv.map(|fv| fv.patch(p)),
+            ..TessPatch::of_record(p, p.face)
         }),
         3,
         1e-9,

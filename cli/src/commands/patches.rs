@@ -51,8 +51,8 @@ use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions, TensorPatch};
 use capdiv_mesh::tessellate::{
-    edge_bit, tessellate, write_obj, ObjWriter, PatchGeometry, StreamTessellator, TessPatch,
-    Tessellation, EDGE_U0, EDGE_V0,
+    ring_inner_edges, tessellate, write_obj, ObjWriter, PatchGeometry, RingLayout,
+    StreamTessellator, TessPatch, Tessellation,
 };
 use capdiv_mesh::PatchUv;
 use std::io::Write;
@@ -138,17 +138,15 @@ where
 }
 
 /// The edges of ring patch `j` (of `len` in its ring) that the next ring
-/// meets, each one against two patches of half its size (bits as
-/// [`edge_bit`]): for C²PS (`k = 4`) the inner edge `u = 0` of span 0
-/// (patches `0..len/2`), for EG (`k = 5`) edge `u = 0` of piece 0 and edge
-/// `v = 0` of piece 1 (patch `3s + piece` of sector `s`; see the module doc).
+/// meets: [`ring_inner_edges`] of the C²PS layout for bicubic sets
+/// (`k = 4`), of the EG one for bi-quartic sets (`k = 5`).
 pub fn inner_edges(k: usize, j: usize, len: usize) -> u8 {
-    match k {
-        4 if j < len / 2 => edge_bit(EDGE_U0),
-        5 if j.is_multiple_of(3) => edge_bit(EDGE_U0),
-        5 if j % 3 == 1 => edge_bit(EDGE_V0),
-        _ => 0,
-    }
+    let layout = if k == 5 {
+        RingLayout::Sectors
+    } else {
+        RingLayout::Polar
+    };
+    ring_inner_edges(layout, j, len)
 }
 
 /// The OBJ header of a patch set: title, description, grid and weld

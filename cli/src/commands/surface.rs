@@ -1071,17 +1071,13 @@ pub fn tessellate_surface_tagged<R: Scalar>(
 ) -> Tess<R> {
     let start = Instant::now();
     let (tolerance, size) = weld_tolerance(mesh, factor);
-    fn tess_patches<S: Copy>(
+    fn tess_patches<S: capdiv::Real>(
         s: &Surface<S>,
         tag: fn(&PatchRecord<S>) -> u32,
     ) -> impl Iterator<Item = TessPatch<S>> + '_ {
         s.patches.iter().enumerate().map(move |(k, p)| TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag: tag(p),
             uv: s.uvs.get(k).copied(),
+            ..TessPatch::of_record(p, tag(p))
         })
     }
     let t = match guide {

@@ -69,7 +69,7 @@ pub enum FaceKind {
     HoleFill {
         /// The ring patch.
         patch: usize,
-        /// Its edge (0: `v = 0`, 1: `u = 1`, 2: `v = 1`, 3: `u = 0`).
+        /// Its edge, in `capdiv_mesh::tessellate`'s edge numbering.
         edge: u8,
     },
 }
@@ -303,7 +303,7 @@ impl Brep {
 struct Piece {
     /// The face.
     face: usize,
-    /// Its edge (0: `v = 0`, 1: `u = 1`, 2: `v = 1`, 3: `u = 0`).
+    /// Its edge, in `capdiv_mesh::tessellate`'s edge numbering.
     edge: u8,
     /// The part of the edge, as the edge's own parameter in the loop's
     /// direction: `[0, 1]`, `[0, ½]` or `[½, 1]`.

@@ -26,6 +26,12 @@
 //!   ([`weld::split_by_uv`]); nothing else changes. Without UVs the result
 //!   is exactly what it is without this step.
 //!
+//! **Edge bits.** A patch's edges are numbered counter-clockwise around its
+//! own square, `0`: `v = 0` ([`EDGE_V0`]), `1`: `u = 1`, `2`: `v = 1`, `3`:
+//! `u = 0`; a set of edges is a `u8` with bit `e` ([`edge_bit`]) for edge
+//! `e`. [`TessPatch::finer`], [`TessPatch::hole`] and the evaluator's
+//! [`crate::PatchRecord`] use them.
+//!
 //! The result is a [`Tessellation`]: a closed input surface gives a closed,
 //! consistently oriented mesh ([`is_closed_and_oriented`]). Faces are
 //! [`Face::Quad`] (interior cells) or [`Face::Tri`] (cells along a finer edge,
@@ -38,6 +44,7 @@ mod sample;
 pub mod stream;
 pub mod weld;
 
+use crate::evaluate::PatchRecord;
 use crate::facevarying::PatchUv;
 use alloc::vec;
 use alloc::vec::Vec;
@@ -60,6 +67,36 @@ pub const EDGE_U0: u8 = 3;
 /// [`TessPatch::hole`]: `1 << e`.
 pub const fn edge_bit(e: u8) -> u8 {
     1 << e
+}
+
+/// How a cap's ring patches are ordered, for [`ring_inner_edges`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RingLayout {
+    /// C²PS: two spans of `N` columns, span 0 (patches `0..N`) the inner
+    /// one, `u` running outwards.
+    Polar,
+    /// EG and Catmull-Clark: per sector `s` three pieces `3s + p` of the
+    /// previous ring's hole `[0, 1]²`: `p = 0` over `[½,1]×[0,½]`, 1 over
+    /// `[0,½]×[½,1]`, 2 over `[½,1]²`.
+    Sectors,
+}
+
+/// The edges (bits as [`edge_bit`]) of ring patch `j` (of `len` in its
+/// ring, laid out as `layout`) that face the cap's centre: the next ring
+/// meets each of them with two patches of half the size
+/// ([`TessPatch::finer`]), or, on the last ring, the hole borders them
+/// ([`TessPatch::hole`]). Polar: edge `u = 0` of span 0; sectors: edge
+/// `u = 0` of piece 0 and edge `v = 0` of piece 1.
+pub fn ring_inner_edges(layout: RingLayout, j: usize, len: usize) -> u8 {
+    match layout {
+        RingLayout::Polar if j < len / 2 => edge_bit(EDGE_U0),
+        RingLayout::Polar => 0,
+        RingLayout::Sectors => match j % 3 {
+            0 => edge_bit(EDGE_U0),
+            1 => edge_bit(EDGE_V0),
+            _ => 0,
+        },
+    }
 }
 
 /// The geometry of one patch to tessellate.
@@ -104,6 +141,19 @@ pub struct TessPatch<R> {
 }
 
 impl<R: Real> TessPatch<R> {
+    /// An evaluator's patch ([`PatchRecord`]: its geometry, finer and hole
+    /// edges and hole point), tagged `tag`, without texture coordinates.
+    pub fn of_record(p: &PatchRecord<R>, tag: u32) -> Self {
+        TessPatch {
+            geometry: p.geometry,
+            finer: p.finer,
+            hole: p.hole,
+            hole_point: p.hole_point,
+            tag,
+            uv: None,
+        }
+    }
+
     /// A patch with no finer edge and no hole edge.
     pub fn new(geometry: PatchGeometry<R>, tag: u32) -> Self {
         TessPatch {
