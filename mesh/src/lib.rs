@@ -71,6 +71,7 @@ pub mod chart;
 pub mod error;
 pub mod evaluate;
 pub mod facevarying;
+pub mod global_step;
 pub mod grid;
 mod hole;
 pub mod input;
@@ -79,7 +80,6 @@ pub mod obj;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod plan;
-pub mod refine;
 pub mod samples;
 pub mod shade;
 pub mod stencil;

@@ -35,15 +35,15 @@
 //! valence) and rule 3 always picks Catmull-Clark.
 
 use crate::adaptive::base::{plain_base, tagged_base, TaggedBase};
-use crate::adaptive::refine::Rules;
+use crate::adaptive::subdivide::Rules;
 use crate::adaptive::{self, AdaptiveOptions};
 use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
 use crate::chart::{Affine, FaceChart};
 use crate::error::MeshError;
+use crate::global_step::{try_global_step, PolarSeed};
 use crate::grid::{face_grid, interior_face_grid, Combo};
 use crate::input::MeshInput;
 use crate::mem;
-use crate::refine::{try_refine, PolarSeed};
 use crate::stencil::{Primvar, StencilTable};
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
 use alloc::boxed::Box;
@@ -444,7 +444,7 @@ impl<'t> SurfacePlan<'t> {
                     quads: c.quads.clone(),
                 })
                 .collect();
-            let refined = try_refine(t, &charts, &seeds)?;
+            let refined = try_global_step(t, &charts, &seeds)?;
             let mut new_pole_steps = mem::filled(refined.num_vertices, 0)?;
             for (seed, &p) in seeds.iter().zip(&refined.poles) {
                 new_pole_steps[p as usize] = pole_steps[seed.pole as usize] + 1;

@@ -2,7 +2,7 @@
 //! Meyer & DeRose 2012; OpenSubdiv's `RefineAdaptive`): every face that no
 //! cap and no level-0 patch covers is refined on its own, as deep as it
 //! needs, with the `Sdc` rules for creases, corners, boundaries, holes and
-//! non-manifold features ([`mod@refine`]). A face that is regular at some level
+//! non-manifold features ([`mod@subdivide`]). A face that is regular at some level
 //! ([`regular`]) is a uniform B-spline patch there; around an irregular
 //! vertex the faces refine into rings converging to it until `depth`, and
 //! the last ring's hole is closed to the vertex's limit point; semi-sharp
@@ -24,8 +24,8 @@ pub mod cnet;
 pub mod crease;
 pub mod level;
 pub mod points;
-pub mod refine;
 pub mod regular;
+pub mod subdivide;
 
 use crate::chart::{Affine, FaceChart};
 use alloc::collections::BTreeMap;
@@ -35,8 +35,8 @@ use cnet::level_cnet;
 use hashbrown::{HashMap, HashSet};
 use level::Level;
 use points::{Key, Points};
-use refine::{limit_point, refine, Rules};
 use regular::{corner_is_regular, regular_grid};
+use subdivide::{limit_point, subdivide, Rules};
 
 /// "No point".
 pub const NONE: u32 = u32::MAX;
@@ -207,7 +207,7 @@ pub fn cover(
                 }
             }
         }
-        let child = refine(m, &ring, options.rules, &mut out.points);
+        let child = subdivide(m, &ring, options.rules, &mut out.points);
         active = Vec::with_capacity(4 * refined.len());
         for (a, irregular) in &refined {
             let f = a.face as usize;

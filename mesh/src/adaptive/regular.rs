@@ -272,7 +272,7 @@ fn put(g: &mut [[Option<u32>; 4]; 4], (i, j): (i32, i32), p: u32) -> Option<()> 
 mod tests {
     use super::*;
     use crate::adaptive::base::tagged_base;
-    use crate::adaptive::refine::{refine, Rules};
+    use crate::adaptive::subdivide::{subdivide, Rules};
     use crate::input::EdgeCrease;
     use crate::samples;
 
@@ -300,7 +300,7 @@ mod tests {
             let base = tagged_base(mesh).level;
             let mut points = Points::new(base.num_vertices() as u32);
             let all: Vec<u32> = (0..base.num_faces() as u32).collect();
-            let child = refine(&base, &all, Rules::default(), &mut points).level;
+            let child = subdivide(&base, &all, Rules::default(), &mut points).level;
             for m in [&base, &child] {
                 for f in 0..m.num_faces() {
                     let gathered = if m.face(f).len() == 4 {

@@ -6,7 +6,7 @@
 
 use capdiv::{FirstStep, PolarNet};
 use capdiv_mesh::chart::{Affine, FaceChart};
-use capdiv_mesh::refine::{refine, PolarSeed, Refined};
+use capdiv_mesh::global_step::{global_step, PolarSeed, Refined};
 use capdiv_mesh::topology::NONE;
 use capdiv_mesh::Topology;
 use std::collections::HashMap;
@@ -196,7 +196,7 @@ fn cube() -> (Vec<P>, Vec<Vec<u32>>) {
 
 fn check_against_textbook(pos: &[P], faces: &[Vec<u32>]) -> Refined {
     let topo = Topology::from_faces(pos.len(), faces).unwrap();
-    let r = refine(&topo, &input_charts(faces.len()), &[]);
+    let r = global_step(&topo, &input_charts(faces.len()), &[]);
     assert_affine_rows(&r);
     assert_eq!(r.faces, expected_faces(pos.len(), faces));
     let got = positions(&r, pos);
@@ -313,7 +313,7 @@ fn regular_grid_interior_is_cubic_b_spline_knot_insertion() {
         ]
     });
     let topo = Topology::from_faces(pos.len(), &faces).unwrap();
-    let r = refine(&topo, &input_charts(faces.len()), &[]);
+    let r = global_step(&topo, &input_charts(faces.len()), &[]);
     assert_affine_rows(&r);
     let got = positions(&r, &pos);
     let p = |i: usize, j: usize| pos[j * n + i];
@@ -516,7 +516,7 @@ fn poles_follow_the_c2ps_kernel_and_everything_else_catmull_clark() {
             let (pos, faces, seeds) = polar_mesh(n, rings, closed, &mut rng);
             let topo = Topology::from_faces(pos.len(), &faces).unwrap();
             assert_eq!(topo.is_closed(), closed);
-            let r = refine(&topo, &input_charts(faces.len()), &seeds);
+            let r = global_step(&topo, &input_charts(faces.len()), &seeds);
             assert_affine_rows(&r);
             assert_eq!(r.poles, seeds.iter().map(|s| s.pole).collect::<Vec<_>>());
             let got = positions(&r, &pos);
@@ -673,7 +673,7 @@ fn quad_charts_compose_quadrants_and_reproduce_affine_positions() {
     };
     let (pos, faces) = grid(n, |i, j| aff(i as f64, j as f64));
     let topo = Topology::from_faces(pos.len(), &faces).unwrap();
-    let r1 = refine(&topo, &input_charts(faces.len()), &[]);
+    let r1 = global_step(&topo, &input_charts(faces.len()), &[]);
     // Level 1, explicitly: corner c of the input quad's square at (0,0), the
     // centre at (1,1), edge midpoints at (1,0) and (0,1).
     let sq = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
@@ -689,7 +689,7 @@ fn quad_charts_compose_quadrants_and_reproduce_affine_positions() {
     }
     let p1 = positions(&r1, &pos);
     let t1 = Topology::from_faces(r1.num_vertices, &r1.faces).unwrap();
-    let r2 = refine(&t1, &r1.charts, &[]);
+    let r2 = global_step(&t1, &r1.charts, &[]);
     assert_affine_rows(&r2);
     let p2 = positions(&r2, &p1);
     for (r, p) in [(&r1, &p1), (&r2, &p2)] {
@@ -724,7 +724,7 @@ fn non_quad_faces_report_their_corner() {
     // Input face 1 is given with a non-trivial chart, to see composition.
     let mut charts = input_charts(3);
     charts[1].map = Affine::quadrant(2);
-    let r1 = refine(&topo, &charts, &[]);
+    let r1 = global_step(&topo, &charts, &[]);
     assert_eq!(r1.parent, vec![0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2]);
     for c in 0..5 {
         assert_eq!(
@@ -759,7 +759,7 @@ fn non_quad_faces_report_their_corner() {
     // One more level: sub-quads of a pentagon's corner keep the corner and
     // take the quadrant of its sub-square.
     let t1 = Topology::from_faces(r1.num_vertices, &r1.faces).unwrap();
-    let r2 = refine(&t1, &r1.charts, &[]);
+    let r2 = global_step(&t1, &r1.charts, &[]);
     for (g, ch) in r2.charts.iter().enumerate() {
         let (parent, c) = (g / 4, g % 4);
         assert_eq!(r2.parent[g] as usize, parent);

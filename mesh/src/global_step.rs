@@ -107,19 +107,19 @@ fn c(t: f64) -> f64 {
 /// # Panics
 /// If `charts` does not have one entry per face, or a seed does not describe
 /// its faces as documented on [`PolarSeed`] (a caller's logic error).
-pub fn refine(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Refined {
-    match try_refine(topo, charts, poles) {
+pub fn global_step(topo: &Topology, charts: &[FaceChart], poles: &[PolarSeed]) -> Refined {
+    match try_global_step(topo, charts, poles) {
         Ok(r) => r,
-        Err(e) => panic!("refine: {e}"),
+        Err(e) => panic!("global_step: {e}"),
     }
 }
 
-/// [`refine`], with [`OutOfMemory`] when a buffer whose size depends on the
+/// [`global_step`], with [`OutOfMemory`] when a buffer whose size depends on the
 /// mesh (edges, stencil rows, faces) cannot be allocated.
 ///
 /// # Panics
-/// As [`refine`], on a caller's logic error.
-pub fn try_refine(
+/// As [`global_step`], on a caller's logic error.
+pub fn try_global_step(
     topo: &Topology,
     charts: &[FaceChart],
     poles: &[PolarSeed],
@@ -127,7 +127,7 @@ pub fn try_refine(
     let nv = topo.num_vertices();
     let nf = topo.num_faces();
     let nh = topo.num_half_edges();
-    assert_eq!(charts.len(), nf, "refine: one chart per face");
+    assert_eq!(charts.len(), nf, "global_step: one chart per face");
 
     // Undirected edges, in the order first met along the half-edges.
     let mut edge = mem::filled(nh, NONE)?;
@@ -208,7 +208,7 @@ pub fn try_refine(
         let n = seed.link1.len();
         assert!(
             n >= 3 && seed.link2.len() == n && seed.triangles.len() == n && seed.quads.len() == n,
-            "refine: PolarSeed of pole {} has inconsistent lengths",
+            "global_step: PolarSeed of pole {} has inconsistent lengths",
             seed.pole
         );
         // h[j]: the half-edge pole → link1[j] in triangles[j].
@@ -224,7 +224,7 @@ pub fn try_refine(
                     });
                 assert!(
                     ok,
-                    "refine: face {f} is not triangle {j} of pole {}",
+                    "global_step: face {f} is not triangle {j} of pole {}",
                     seed.pole
                 );
                 let k = k.unwrap_or(0);
@@ -242,7 +242,11 @@ pub fn try_refine(
                 seed.link2[(j + 1) % n],
             ];
             let ok = vs.len() == 4 && (0..4).any(|s| (0..4).all(|i| vs[(s + i) % 4] == want[i]));
-            assert!(ok, "refine: face {f} is not quad {j} of pole {}", seed.pole);
+            assert!(
+                ok,
+                "global_step: face {f} is not quad {j} of pole {}",
+                seed.pole
+            );
         }
         let (q00, q1, q2) = (seed.pole, &seed.link1, &seed.link2);
         let nf64 = n as f64;
@@ -353,7 +357,7 @@ mod tests {
         // Half-edges: 0→1 (e0), 1→2 (e1), 2→0 (e2), 2→1 (= e1), 1→3 (e3), 3→2 (e4).
         let faces = vec![vec![0, 1, 2], vec![2, 1, 3]];
         let t = Topology::from_faces(4, &faces).unwrap();
-        let r = refine(&t, &charts(2), &[]);
+        let r = global_step(&t, &charts(2), &[]);
         assert_eq!(r.num_vertices, 4 + 2 + 5);
         let e = |i: u32| 6 + i;
         assert_eq!(
@@ -411,7 +415,7 @@ mod tests {
     fn pole_row_is_three_quarters_pole_plus_quarter_link_mean() {
         for n in 3..9 {
             let (t, seed) = bipyramid_seed(n);
-            let r = refine(&t, &charts(t.num_faces() as u32), &[seed]);
+            let r = global_step(&t, &charts(t.num_faces() as u32), &[seed]);
             assert_eq!(r.poles, vec![0]);
             let row: Vec<(u32, f64)> = r.stencils.row(0).collect();
             assert_eq!(row.len(), n as usize + 1);
@@ -442,6 +446,6 @@ mod tests {
     fn a_seed_naming_the_wrong_faces_panics() {
         let (t, mut seed) = bipyramid_seed(5);
         seed.triangles.swap(0, 1);
-        let _ = refine(&t, &charts(t.num_faces() as u32), &[seed]);
+        let _ = global_step(&t, &charts(t.num_faces() as u32), &[seed]);
     }
 }

@@ -84,7 +84,7 @@ pub struct Rules {
 }
 
 /// Refines `faces` of `m` (see the module doc for what `m` must hold).
-pub fn refine(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Child {
+pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Child {
     let chaikin = rules.chaikin;
     // Children by parent index (NONE: not made yet).
     let mut vchild = vec![NONE; m.num_vertices()];
@@ -207,7 +207,7 @@ fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
         .map(move |&e| m.edge_sharpness[e as usize])
 }
 
-/// The face point of `f` (a new point: [`refine`] makes each face's once).
+/// The face point of `f` (a new point: [`subdivide`] makes each face's once).
 pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
     let mut row = Row::new();
     add_centroid(m, f, 1.0, &mut row);
