@@ -39,6 +39,20 @@ impl<R: Real> Point3<R> {
     pub fn norm(self) -> R {
         self.dot(self).sqrt()
     }
+    /// `self` divided by its length ([`Point3::norm`]), `None` when the
+    /// length is zero or not finite.
+    ///
+    /// ```
+    /// use capdiv::Point3;
+    /// assert_eq!(Point3::new(3.0, 0.0, 4.0).unit(), Some(Point3::new(0.6, 0.0, 0.8)));
+    /// assert_eq!(Point3::<f64>::ZERO.unit(), None);
+    /// assert_eq!(Point3::new(f64::INFINITY, 0.0, 0.0).unit(), None);
+    /// ```
+    #[inline]
+    pub fn unit(self) -> Option<Self> {
+        let len = self.norm();
+        (len > R::ZERO && len.is_finite()).then(|| Point3(self.0.map(|c| c / len)))
+    }
     /// Converts the coordinate type (through `f64`).
     #[inline]
     pub fn cast<S: Real>(self) -> Point3<S> {

@@ -3,27 +3,26 @@
 //! (supersampled) pixels — fitted to everything drawn, or framed on a focus
 //! point at a given radius.
 
-/// A point or direction.
+use capdiv::Point3;
+
+/// A point or direction: the coordinates of a `Point3<f64>`, whose
+/// operations [`dot`], [`cross`] and [`unit`] apply to it.
 pub type V3 = [f64; 3];
 
-/// Dot product.
+/// [`Point3::dot`] of two `V3`.
 pub fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    Point3(a).dot(Point3(b))
 }
 
-/// Cross product.
+/// [`Point3::cross`] of two `V3`.
 pub fn cross(a: V3, b: V3) -> V3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
+    Point3(a).cross(Point3(b)).0
 }
 
-/// `a` scaled to unit length, `None` when it is zero or not finite.
+/// [`Point3::unit`] of a `V3`: `a` scaled to unit length, `None` when it is
+/// zero or not finite.
 pub fn unit(a: V3) -> Option<V3> {
-    let l = dot(a, a).sqrt();
-    (l > 0.0 && l.is_finite()).then(|| a.map(|c| c / l))
+    Point3(a).unit().map(|u| u.0)
 }
 
 /// The world axis that points up in a picture.

@@ -24,7 +24,7 @@ use crate::input::MeshInput;
 use alloc::collections::{BTreeMap, BTreeSet};
 use alloc::vec;
 use alloc::vec::Vec;
-use capdiv::Real;
+use capdiv::Point3;
 
 const PI: f64 = core::f64::consts::PI;
 const TAU: f64 = 2.0 * PI;
@@ -60,24 +60,13 @@ fn cos(x: f64) -> f64 {
     sin_cos(x).1
 }
 
-fn sqrt(x: f64) -> f64 {
-    <f64 as Real>::sqrt(x)
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 fn axpy(p: [f64; 3], s: f64, d: [f64; 3]) -> [f64; 3] {
     [p[0] + s * d[0], p[1] + s * d[1], p[2] + s * d[2]]
 }
 
+/// `a / |a|` (not finite for a zero `a`).
 fn normalized(a: [f64; 3]) -> [f64; 3] {
-    let l = sqrt(dot(a, a));
+    let l = Point3(a).norm();
     [a[0] / l, a[1] / l, a[2] / l]
 }
 
@@ -180,8 +169,8 @@ impl Builder {
         let radial: Vec<[f64; 3]> = base
             .iter()
             .map(|&v| {
-                let o = sub(self.vertices[v as usize], c);
-                normalized(axpy(o, -dot(o, d), d))
+                let o = (Point3(self.vertices[v as usize]) - Point3(c)).0;
+                normalized(axpy(o, -Point3(o).dot(Point3(d)), d))
             })
             .collect();
         let end = radius * 0.9;
@@ -468,7 +457,7 @@ pub fn rounded_cube(k: usize) -> MeshInput {
                 2.0 * g[1] as f64 / k as f64 - 1.0,
                 2.0 * g[2] as f64 / k as f64 - 1.0,
             ];
-            let s = 0.5 + 0.5 * 1.2 / sqrt(dot(p, p));
+            let s = 0.5 + 0.5 * 1.2 / Point3(p).norm();
             [p[0] * s, p[1] * s, p[2] * s]
         },
     )
@@ -798,8 +787,8 @@ mod tests {
                 assert!(!f[..k].contains(&v), "repeated vertex in {f:?}");
                 used[v as usize] = true;
                 let w = f[(k + 1) % f.len()];
-                let d = sub(m.vertices[w as usize], m.vertices[v as usize]);
-                assert!(dot(d, d) > 1e-12, "zero-length edge in {f:?}");
+                let d = Point3(m.vertices[w as usize]) - Point3(m.vertices[v as usize]);
+                assert!(d.dot(d) > 1e-12, "zero-length edge in {f:?}");
             }
             // Newell normal.
             let mut nrm = [0.0; 3];
@@ -810,7 +799,10 @@ mod tests {
                 nrm[1] += (p[2] - q[2]) * (p[0] + q[0]);
                 nrm[2] += (p[0] - q[0]) * (p[1] + q[1]);
             }
-            assert!(dot(nrm, nrm) > 1e-12, "degenerate face {f:?}");
+            assert!(
+                Point3(nrm).dot(Point3(nrm)) > 1e-12,
+                "degenerate face {f:?}"
+            );
         }
         assert!(used.iter().all(|&u| u), "unused vertex");
         let mut sorted: Vec<[u64; 3]> = m

@@ -18,7 +18,7 @@
 //!   crossings are the highlight lines. A flaw in curvature shows as a kink
 //!   or a wobble of the stripes.
 
-use capdiv::{Error, SurfaceJet};
+use capdiv::{Error, Point3, SurfaceJet};
 
 use crate::tessellate::PatchGeometry;
 
@@ -31,23 +31,6 @@ impl<R: capdiv::Real> PatchGeometry<R> {
             PatchGeometry::Quartic(p) => p.jet(u, v),
         }
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let len = libm::sqrt(dot(a, a));
-    (len > 0.0 && len.is_finite()).then(|| [a[0] / len, a[1] / len, a[2] / len])
 }
 
 /// Default number of light-line spacings across a picture's visible height:
@@ -78,16 +61,16 @@ impl HighlightLines {
         across: [f64; 3],
         spacing: f64,
     ) -> Option<Self> {
-        let e = unit(direction)?;
-        let plane_normal = unit(cross(e, across))?;
-        let d = cross(plane_normal, e);
+        let e = Point3(direction).unit()?;
+        let plane_normal = e.cross(Point3(across)).unit()?;
+        let d = plane_normal.cross(e);
         if !(spacing > 0.0 && spacing.is_finite() && origin.iter().all(|c| c.is_finite())) {
             return None;
         }
         Some(HighlightLines {
             origin,
-            across: d,
-            plane_normal,
+            across: d.0,
+            plane_normal: plane_normal.0,
             spacing,
         })
     }
@@ -97,8 +80,8 @@ impl HighlightLines {
     /// where the normal is parallel to the plane (the normal line never
     /// meets it) or the input is not finite.
     pub fn parameter(&self, point: [f64; 3], normal: [f64; 3]) -> Option<f64> {
-        let w = self.plane_normal;
-        let nw = dot(normal, w);
+        let w = Point3(self.plane_normal);
+        let nw = Point3(normal).dot(w);
         if nw.abs() < 1e-12 {
             return None;
         }
@@ -107,13 +90,13 @@ impl HighlightLines {
             self.origin[1] - point[1],
             self.origin[2] - point[2],
         ];
-        let mu = dot(rel, w) / nw;
+        let mu = Point3(rel).dot(w) / nw;
         let q = [
             point[0] + mu * normal[0] - self.origin[0],
             point[1] + mu * normal[1] - self.origin[1],
             point[2] + mu * normal[2] - self.origin[2],
         ];
-        let s = dot(q, self.across) / self.spacing;
+        let s = Point3(q).dot(Point3(self.across)) / self.spacing;
         s.is_finite().then_some(s)
     }
 

@@ -249,8 +249,7 @@ impl Part {
 /// `n / |n|` rounded to `f32` and normalised again in `f32`'s terms, or
 /// `None` for a zero or non-finite `n`.
 fn unit(n: [f64; 3]) -> Option<[f32; 3]> {
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    (len > 0.0 && len.is_finite()).then(|| n.map(|x| (x / len) as f32))
+    Point3(n).unit().map(|u| u.0.map(|x| x as f32))
 }
 
 /// Per-component minimum and maximum (required on `POSITION`, §3.7.2.1).
