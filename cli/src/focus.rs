@@ -145,7 +145,7 @@ fn nearest_corner(shape: &Shape, p: V3) -> Option<V3> {
         .flat_map(|sp| {
             [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
                 .into_iter()
-                .filter_map(|(u, v)| sp.geometry.jet(u, v).ok().map(|j| j.position.0))
+                .filter_map(|(u, v)| sp.geometry().jet(u, v).ok().map(|j| j.position.0))
         })
         .filter(|q| q.iter().all(|c| c.is_finite()))
         .min_by(|a, b| dist(*a, p).total_cmp(&dist(*b, p)))

@@ -27,7 +27,6 @@ pub use crate::camera::{Camera, Focus, Up};
 use crate::raster::{downsample, ZBuffer};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
-use capdiv::Point3;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
 use capdiv_mesh::tessellate::{Face, TessPatch};
 use capdiv_mesh::PatchUv;
@@ -81,10 +80,9 @@ fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
         hole: HOLE_UV,
     };
     let patches = shape.patches.iter().enumerate().map(|(k, sp)| TessPatch {
-        hole: sp.hole,
-        hole_point: Point3(sp.hole_point),
+        tag: k as u32,
         uv: Some(square),
-        ..TessPatch::new(sp.geometry, k as u32)
+        ..sp.patch
     });
     let t = capdiv_mesh::tessellate::tessellate(patches, grid, 0.0);
     let mut tris = Vec::with_capacity(2 * t.faces.len());
@@ -130,8 +128,8 @@ fn rasterise(shapes: &[&Shape], cam: &Camera) -> (Fit, Vec<Hits>) {
                 uv: vec![[0.0; 2]; w * h],
             };
             for t in list {
-                // A little overlap (1/8 supersample) closes cracks between
-                // patches tessellated independently.
+                // A little overlap (1/8 supersample) closes rounding gaps between
+                // the triangles of neighbouring patches.
                 z.triangle(t.map(|v| screen(v.p)), 0.125, |k, l| {
                     hits.patch[k] = t[0].patch;
                     let uv = [
@@ -218,7 +216,7 @@ fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Vec<Vec<Option<Sample>>> {
                 .zip(&hit.uv)
                 .map(|(&p, uv)| {
                     let sp = shape.patches.get(p as usize)?;
-                    let (point, normal, k, h) = geometry_at(&sp.geometry, uv[0], uv[1])?;
+                    let (point, normal, k, h) = geometry_at(sp.geometry(), uv[0], uv[1])?;
                     Some(Sample {
                         point,
                         normal,

@@ -26,7 +26,7 @@ use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, NetStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
-use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
+use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout, TessPatch};
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
 };
@@ -34,17 +34,45 @@ use capdiv_mesh::{
 /// One patch of a [`Shape`].
 #[derive(Clone, Debug)]
 pub struct ShapePatch {
-    /// The Bézier patch.
-    pub geometry: PatchGeometry<f64>,
+    /// The Bézier patch with its finer and hole edges and the limit point
+    /// the hole closes to, as the tessellator takes it (tagged by level).
+    pub patch: TessPatch<f64>,
     /// Ring level (C²PS/RTS: the level of the ring, 0 for the outer region;
     /// EG/CC: the step that emitted it; meshes: the patch's level).
     pub level: u32,
     /// Whether it is a ring patch of the cap the curvature table follows.
     pub ring: bool,
-    /// Edges (`capdiv_mesh::tessellate::edge_bit`) bordering the last hole.
-    pub hole: u8,
-    /// The limit point the hole closes to.
-    pub hole_point: [f64; 3],
+}
+
+impl ShapePatch {
+    /// A ring patch (or, with `ring` false, an outer-region patch) of
+    /// `level` whose edges `inner` face the cap's centre
+    /// ([`ring_inner_edges`]): finer on every ring but the last, whose
+    /// `inner` edges border the hole closed to `hole_point`.
+    fn ring(
+        geometry: PatchGeometry<f64>,
+        level: u32,
+        ring: bool,
+        (inner, last): (u8, bool),
+        hole_point: [f64; 3],
+    ) -> Self {
+        let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
+        ShapePatch {
+            patch: TessPatch {
+                finer,
+                hole,
+                hole_point: Point3(hole_point),
+                ..TessPatch::new(geometry, level)
+            },
+            level,
+            ring,
+        }
+    }
+
+    /// The Bézier patch.
+    pub fn geometry(&self) -> &PatchGeometry<f64> {
+        &self.patch.geometry
+    }
 }
 
 /// Limit curvature at the cap's centre, or why there is none.
@@ -156,7 +184,7 @@ pub fn build(
             mesh_shape(name, &mesh, depth, cc, None)?
         }
     };
-    let finite = shape.patches.iter().all(|p| match &p.geometry {
+    let finite = shape.patches.iter().all(|p| match p.geometry() {
         PatchGeometry::Cubic(q) => q.points.iter().flatten().all(Point3::is_finite),
         PatchGeometry::Quartic(q) => q.points.iter().flatten().all(Point3::is_finite),
     });
@@ -212,30 +240,20 @@ impl PolarJob<'_> {
         let outer = OuterRegion::new(pole, links).map_err(kernel)?;
         let mut patches: Vec<ShapePatch> = outer
             .patches()
-            .map(|p| ShapePatch {
-                geometry: PatchGeometry::Cubic(p),
-                level: 0,
-                ring: false,
-                hole: 0,
-                hole_point,
-            })
+            .map(|p| ShapePatch::ring(PatchGeometry::Cubic(p), 0, false, (0, false), hole_point))
             .collect();
         for level in 0..=self.depth {
             if net.links_held() >= 5 {
                 let cols = net.valence();
                 for (k, p) in net.ring_patches().map_err(kernel)?.enumerate() {
-                    let last = level == self.depth;
-                    patches.push(ShapePatch {
-                        geometry: PatchGeometry::Cubic(p),
+                    let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);
+                    patches.push(ShapePatch::ring(
+                        PatchGeometry::Cubic(p),
                         level,
-                        ring: true,
-                        hole: if last {
-                            ring_inner_edges(RingLayout::Polar, k, 2 * cols)
-                        } else {
-                            0
-                        },
+                        true,
+                        (inner, level == self.depth),
                         hole_point,
-                    });
+                    ));
                 }
             }
             if level < self.depth {
@@ -265,15 +283,6 @@ impl PolarJob<'_> {
     }
 }
 
-/// EG/CC ring patch `k`'s hole edges on the last ring.
-fn ring_hole(k: usize, last: bool) -> u8 {
-    if last {
-        ring_inner_edges(RingLayout::Sectors, k, 0)
-    } else {
-        0
-    }
-}
-
 /// EG rings of a c-net or d-net (built-in rules: n = 3, 4, 5).
 fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     let mut sub = subdivision::<f64>(name, input, None)?;
@@ -283,13 +292,14 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     for level in 1..=depth {
         sub.step().map_err(kernel)?;
         for (k, p) in sub.ring_patches().enumerate() {
-            patches.push(ShapePatch {
-                geometry: PatchGeometry::Quartic(p),
+            let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
+            patches.push(ShapePatch::ring(
+                PatchGeometry::Quartic(p),
                 level,
-                ring: true,
-                hole: ring_hole(k, level == depth),
+                true,
+                (inner, level == depth),
                 hole_point,
-            });
+            ));
         }
     }
     Ok(Shape {
@@ -318,13 +328,14 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     for level in 1..=depth {
         cap.step().map_err(kernel)?;
         for (k, p) in cap.ring_patches().enumerate() {
-            patches.push(ShapePatch {
-                geometry: PatchGeometry::Cubic(p),
+            let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
+            patches.push(ShapePatch::ring(
+                PatchGeometry::Cubic(p),
                 level,
-                ring: true,
-                hole: ring_hole(k, level == depth),
+                true,
+                (inner, level == depth),
                 hole_point,
-            });
+            ));
         }
     }
     Ok(Shape {
@@ -454,16 +465,15 @@ fn mesh_shape(
         .filter(kept)
         .map(|p| {
             let ring = p.cap.is_some_and(|c| followed.contains(&c));
+            let level = if ring {
+                p.level - first_level + 1
+            } else {
+                p.level
+            };
             ShapePatch {
-                geometry: p.geometry,
-                level: if ring {
-                    p.level - first_level + 1
-                } else {
-                    p.level
-                },
+                patch: TessPatch::of_record(p, level),
+                level,
                 ring,
-                hole: p.hole,
-                hole_point: p.hole_point.0,
             }
         })
         .collect();

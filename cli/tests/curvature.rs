@@ -144,7 +144,7 @@ fn sampled_quadrics_have_their_analytic_curvature() {
             for a in 0..=4 {
                 for b in 0..=4 {
                     let (x, _, k, h) =
-                        geometry_at(&p.geometry, a as f64 / 4.0, b as f64 / 4.0).unwrap();
+                        geometry_at(p.geometry(), a as f64 / 4.0, b as f64 / 4.0).unwrap();
                     let r2 = x[0] * x[0] + x[1] * x[1];
                     let k0 = 1.0 / (1.0 + r2).powi(2);
                     let h0 = (2.0 + r2) / (2.0 * (1.0 + r2).powf(1.5));

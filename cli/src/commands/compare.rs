@@ -60,7 +60,7 @@ fn same_surfaces(shapes: &[Shape]) -> String {
                 && a.patches
                     .iter()
                     .zip(&b.patches)
-                    .all(|(p, q)| p.geometry == q.geometry);
+                    .all(|(p, q)| p.geometry() == q.geometry());
             if same {
                 out += &format!(
                     "note: panels {} and {} draw the same surface ({})\n",

@@ -59,7 +59,7 @@ pub fn table(shape: &Shape, samples: u32) -> CurvatureTable {
         for a in 0..=s {
             for b in 0..=s {
                 let (u, v) = (f64::from(a) / f64::from(s), f64::from(b) / f64::from(s));
-                let Some((_, _, k, h)) = geometry_at(&p.geometry, u, v) else {
+                let Some((_, _, k, h)) = geometry_at(p.geometry(), u, v) else {
                     continue;
                 };
                 let entry = match levels.iter_mut().find(|l| l.level == p.level) {
