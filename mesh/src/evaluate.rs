@@ -73,7 +73,8 @@ pub struct PatchRecord<R> {
     pub hole: u8,
     /// The cap's limit point (where `hole` edges are closed to).
     pub hole_point: Point3<R>,
-    /// Bit `k`: edge `k` lies on the surface's boundary. Bit `4 + k`: corner
+    /// Bit `k` (edges as [`crate::tessellate::edge_bit`] numbers them): edge
+    /// `k` lies on the surface's boundary. Bit `4 + k`: corner
     /// `k` (where edge `k` starts) is a boundary vertex where exactly two
     /// patches meet. Set for regular patches of the analysed level (0
     /// elsewhere: unknown); a streaming welder lets go of samples there

@@ -274,15 +274,8 @@ impl<R: Real> StreamTessellator<R> {
 
     /// [`Self::push`] of an evaluator's patch, tagged `tag`, grouped by its cap.
     pub fn push_record(&mut self, p: &PatchRecord<R>, tag: u32, sink: &mut dyn MeshSink<R>) {
-        let t = TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag,
-            // The streaming weld carries positions and normals only.
-            uv: None,
-        };
+        // The streaming weld carries positions and normals only: no UVs.
+        let t = TessPatch::of_record(p, tag);
         self.push_on_boundary(&t, p.cap, p.boundary, sink);
     }
 
