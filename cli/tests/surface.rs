@@ -128,7 +128,7 @@ fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, us
     for (scheme, id) in [(Scheme::Eg, "eg"), (Scheme::CatmullClark, "catmull-clark")] {
         counts.insert(
             id,
-            plan.ev
+            plan.extraordinary
                 .iter()
                 .filter(|e| e.scheme == scheme)
                 .map(|e| 3 * e.sectors.len() * depth as usize)

@@ -120,7 +120,9 @@ fn evaluate<R: FuzzReal>(
         return None;
     }
     let t = tessellate(
-        sink.patches.iter().map(|p| TessPatch::of_record(p, p.level)),
+        sink.patches
+            .iter()
+            .map(|p| TessPatch::of_record(p, p.level)),
         grid,
         // Relative to the mesh's size, as the CLI welds (an absolute
         // tolerance makes the weld quadratic on tiny meshes: every sample in
@@ -213,7 +215,7 @@ fn pipeline(mesh: &MeshInput, mode: Mode) {
         "for_mesh left faces uncovered: {:?}",
         &plan.uncovered[..plan.uncovered.len().min(4)]
     );
-    let items = plan.regular.len() + plan.polar.len() + plan.ev.len();
+    let items = plan.regular.len() + plan.polar.len() + plan.extraordinary.len();
     if items <= 4000 {
         if mode.f32_run {
             evaluate::<f32>(&plan, &mesh.vertices, mode.grid);
@@ -238,7 +240,7 @@ fn pipeline(mesh: &MeshInput, mode: Mode) {
     if mode.plain_too {
         if let Some(topo) = &topo {
             if let Ok(plan) = SurfacePlan::new(topo, options) {
-                if plan.regular.len() + plan.polar.len() + plan.ev.len() <= 4000 {
+                if plan.regular.len() + plan.polar.len() + plan.extraordinary.len() <= 4000 {
                     evaluate::<f64>(&plan, &mesh.vertices, mode.grid);
                 }
             }

@@ -1,7 +1,7 @@
 //! Finding the caps' configurations in a mesh: polar configurations (spec
 //! docs/math/c2ps.md §1) and the c-nets of extraordinary points (docs/math/eg.md §1).
 
-use crate::grid::{corner_grid, Combo};
+use crate::grid::{corner_grid, GridPoint};
 use crate::topology::{Topology, NONE};
 use alloc::vec;
 use alloc::vec::Vec;
@@ -76,7 +76,7 @@ pub struct PolarConfig {
     /// `quads[j]` from `links[0][j]`.
     pub links: [Vec<u32>; 2],
     /// Link 3 as combinations (phantoms at a boundary), empty if unknown.
-    pub link3: Vec<Combo>,
+    pub link3: Vec<GridPoint>,
     /// `triangles[j]` = face `(pole, link1[j], link1[j+1])`.
     pub triangles: Vec<u32>,
     /// `quads[j]` = face `(link1[j+1], link1[j], link2[j], link2[j+1])`.
@@ -195,14 +195,14 @@ pub fn polar_config(
             });
         }
     }
-    let link3: Vec<Combo> = if !need_link3 {
+    let link3: Vec<GridPoint> = if !need_link3 {
         Vec::new()
     } else if boundary_at.is_some() {
         (0..n)
-            .filter_map(|j| Combo::from_terms(&[(link2[j], 2.0), (link1[j], -1.0)]))
+            .filter_map(|j| GridPoint::from_terms(&[(link2[j], 2.0), (link1[j], -1.0)]))
             .collect()
     } else {
-        rings[1].iter().map(|&q| Combo::vertex(q)).collect()
+        rings[1].iter().map(|&q| GridPoint::vertex(q)).collect()
     };
     // All vertices distinct (a configuration must not wrap onto itself).
     let mut all: Vec<u32> = link1.iter().chain(&link2).copied().collect();
@@ -226,7 +226,7 @@ pub fn polar_config(
 
 /// The c-net of an extraordinary point (docs/math/eg.md §1) found in the mesh.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EvConfig {
+pub struct ExtraordinaryConfig {
     /// The center `e`.
     pub center: u32,
     /// `6n` nodes, sector by sector in the §1 order (1,0) (2,0) (1,1) (2,1) (1,2) (2,2).
@@ -238,7 +238,7 @@ pub struct EvConfig {
 
 /// The c-net around `v`: an interior vertex of valence `n ≠ 4` (n ≥ 3) whose
 /// faces are quads and whose 1-ring vertices are all regular (4 quads).
-pub fn ev_config(t: &Topology, v: usize) -> Result<EvConfig, Reason> {
+pub fn extraordinary_config(t: &Topology, v: usize) -> Result<ExtraordinaryConfig, Reason> {
     if t.vertex_first(v) == NONE {
         return Err(Reason::NotQuad);
     }
@@ -274,7 +274,7 @@ pub fn ev_config(t: &Topology, v: usize) -> Result<EvConfig, Reason> {
         }
         sectors.push((f, t.corner_of(h) as u8));
     }
-    Ok(EvConfig {
+    Ok(ExtraordinaryConfig {
         center: v as u32,
         nodes,
         sectors,

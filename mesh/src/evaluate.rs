@@ -15,7 +15,7 @@ use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
 use crate::hole;
 use crate::mem;
-use crate::plan::{EvPlan, PolarPlan, Scheme, SurfacePlan, Unit};
+use crate::plan::{ExtraordinaryCapPlan, PolarPlan, Scheme, SurfacePlan, Unit};
 use crate::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
 use alloc::boxed::Box;
 use alloc::format;
@@ -268,7 +268,12 @@ impl<R: Real> Scratch<R> {
     /// ([`PolarNetBuf::capacity_for`]).
     pub(crate) fn new(plan: &SurfacePlan<'_>, need: usize) -> Result<Self, EvalError> {
         let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
-        let max_ev = plan.ev.iter().map(|e| e.sectors.len()).max().unwrap_or(0);
+        let max_ev = plan
+            .extraordinary
+            .iter()
+            .map(|e| e.sectors.len())
+            .max()
+            .unwrap_or(0);
         Ok(Scratch {
             polar_links: mem::filled(PolarNetBuf::<R>::link_storage_len(need), Point3::ZERO)?,
             polar_roots: mem::filled(PolarNetBuf::<R>::root_storage_len(need), [R::ZERO; 2])?,
@@ -300,7 +305,7 @@ impl<R: Real> Evaluator<R> {
             eg_rules: [3, 5]
                 .into_iter()
                 .filter(|&n| {
-                    plan.ev
+                    plan.extraordinary
                         .iter()
                         .any(|e| e.scheme == Scheme::Eg && e.sectors.len() == n)
                 })
@@ -467,7 +472,7 @@ impl<R: Real> Scratch<R> {
         let polar = plan.polar.len();
         match plan.polar.get(index as usize) {
             Some(p) => self.polar_cap(work, plan, p, index, sink),
-            None => match plan.ev.get(index as usize - polar) {
+            None => match plan.extraordinary.get(index as usize - polar) {
                 Some(e) => self.ev_cap(work, eg_rules, plan, e, index, sink),
                 None => Ok(()),
             },
@@ -495,7 +500,7 @@ impl<R: Real> Scratch<R> {
         }
         let pole = work[p.pole as usize].0;
         let depth = plan.options.depth;
-        let n_in = n >> p.pre;
+        let n_in = n >> p.prior_steps;
         let (l1, rest) = self.links.split_at(n.min(self.links.len()));
         let (l2, l3) = rest.split_at(n.min(rest.len()));
         let mut net = PolarNetBuf::new(
@@ -525,7 +530,7 @@ impl<R: Real> Scratch<R> {
             };
             // Columns of this level per input triangle.
             let per = cols / n_in.max(1);
-            let scale = 1.0 / (1u64 << (m + p.pre)) as f64;
+            let scale = 1.0 / (1u64 << (m + p.prior_steps)) as f64;
             for span in 0..2 {
                 let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
                 for c in 0..cols {
@@ -556,7 +561,7 @@ impl<R: Real> Scratch<R> {
                     };
                     sink.patch(&record(
                         PatchKind::Polar,
-                        m + p.pre,
+                        m + p.prior_steps,
                         &chart,
                         rect,
                         patch,
@@ -593,7 +598,7 @@ impl<R: Real> Scratch<R> {
         work: &[Point3<R>],
         eg_rules: &[FourierRule<'static, R>],
         plan: &SurfacePlan<'_>,
-        e: &EvPlan,
+        e: &ExtraordinaryCapPlan,
         index: u32,
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
@@ -745,7 +750,7 @@ fn run_eg<R: Real, F>(
     (depth, tolerance): (u32, Option<f64>),
     sink: &mut dyn SurfaceSink<R>,
     emit: &F,
-    e: &EvPlan,
+    e: &ExtraordinaryCapPlan,
     index: u32,
 ) -> Result<(), EvalError>
 where

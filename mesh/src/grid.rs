@@ -8,15 +8,15 @@ use crate::topology::{Topology, NONE};
 /// one term of weight 1; a phantom point two, or four at a corner). Fixed
 /// size, so gathering a face allocates nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Combo {
+pub struct GridPoint {
     terms: [(u32, f64); 4],
     len: u8,
 }
 
-impl Combo {
+impl GridPoint {
     /// The vertex `v` itself.
     pub fn vertex(v: u32) -> Self {
-        Combo {
+        GridPoint {
             terms: [(v, 1.0), (0, 0.0), (0, 0.0), (0, 0.0)],
             len: 1,
         }
@@ -24,7 +24,7 @@ impl Combo {
 
     /// `Σ w·v` over `terms` (at most 4; `None` beyond).
     pub fn from_terms(terms: &[(u32, f64)]) -> Option<Self> {
-        let mut c = Combo {
+        let mut c = GridPoint {
             terms: [(0, 0.0); 4],
             len: 0,
         };
@@ -49,8 +49,8 @@ impl Combo {
     }
 
     /// The mirror `2·near − far` (`None` if it would need more than 4 terms).
-    pub fn mirror(near: &Combo, far: &Combo) -> Option<Self> {
-        let mut c = Combo {
+    pub fn mirror(near: &GridPoint, far: &GridPoint) -> Option<Self> {
+        let mut c = GridPoint {
             terms: [(0, 0.0); 4],
             len: 0,
         };
@@ -149,19 +149,19 @@ fn put(g: &mut [[Option<u32>; 3]; 3], (a, b): (i32, i32), v: u32) -> Option<()> 
 ///
 /// `None` unless the face is regular: a quad whose four corners are regular
 /// (see [`corner_grid`]) and whose neighbourhood fits one grid.
-pub fn face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
+pub fn face_grid(t: &Topology, f: usize) -> Option<[[GridPoint; 4]; 4]> {
     if t.face_len(f) != 4 {
         return None;
     }
     if let Some(g) = interior_face_grid(t, f) {
-        return Some(g.map(|row| row.map(Combo::vertex)));
+        return Some(g.map(|row| row.map(GridPoint::vertex)));
     }
     gathered_face_grid(t, f)
 }
 
 /// [`face_grid`] by gathering each corner's 3×3 neighbourhood
 /// ([`corner_grid`]) and mirroring at the boundary: every regular face.
-fn gathered_face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
+fn gathered_face_grid(t: &Topology, f: usize) -> Option<[[GridPoint; 4]; 4]> {
     if t.face_len(f) != 4 {
         return None;
     }
@@ -190,18 +190,18 @@ fn gathered_face_grid(t: &Topology, f: usize) -> Option<[[Combo; 4]; 4]> {
             }
         }
     }
-    let mut out: [[Option<Combo>; 4]; 4] = [[None; 4]; 4];
+    let mut out: [[Option<GridPoint>; 4]; 4] = [[None; 4]; 4];
     let mut complete = true;
     for (o_row, g_row) in out.iter_mut().zip(&grid) {
         for (o, g) in o_row.iter_mut().zip(g_row) {
-            *o = g.map(Combo::vertex);
+            *o = g.map(GridPoint::vertex);
             complete &= g.is_some();
         }
     }
     if !complete {
         mirror(&mut out)?;
     }
-    let mut full = [[Combo::vertex(0); 4]; 4];
+    let mut full = [[GridPoint::vertex(0); 4]; 4];
     for (f_row, o_row) in full.iter_mut().zip(&out) {
         for (f, o) in f_row.iter_mut().zip(o_row) {
             *f = (*o)?;
@@ -293,7 +293,7 @@ pub fn interior_face_grid(t: &Topology, f: usize) -> Option<[[u32; 4]; 4]> {
 /// across the edge), never an extrapolation along a row of phantoms filled
 /// in the same pass (which differs unless the grid is affine, and is not
 /// what the neighbouring face computes for the same point).
-fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
+fn mirror(g: &mut [[Option<GridPoint>; 4]; 4]) -> Option<()> {
     loop {
         let mut changed = false;
         let mut missing = false;
@@ -312,7 +312,7 @@ fn mirror(g: &mut [[Option<Combo>; 4]; 4]) -> Option<()> {
                 let mut filled = None;
                 for ((ni, nj), (fi, fj)) in pairs.into_iter().flatten() {
                     if let (Some(near), Some(far)) = (&known[ni][nj], &known[fi][fj]) {
-                        filled = Some(Combo::mirror(near, far)?);
+                        filled = Some(GridPoint::mirror(near, far)?);
                         break;
                     }
                 }
@@ -380,7 +380,11 @@ mod tests {
                 let gathered = gathered_face_grid(&t, f);
                 if let Some(g) = interior_face_grid(&t, f) {
                     fast += 1;
-                    assert_eq!(Some(g.map(|r| r.map(Combo::vertex))), gathered, "face {f}");
+                    assert_eq!(
+                        Some(g.map(|r| r.map(GridPoint::vertex))),
+                        gathered,
+                        "face {f}"
+                    );
                 }
             }
         }

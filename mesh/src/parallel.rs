@@ -92,7 +92,7 @@ fn pieces(plan: &SurfacePlan<'_>) -> Result<Vec<Piece>, OutOfMemory> {
         Unit::Regular(_) => 1,
         Unit::Cap(i) => match plan.polar.get(i as usize) {
             Some(p) => 4u64.saturating_mul(p.valence as u64).saturating_mul(levels),
-            None => plan.ev.get(i as usize - polar).map_or(1, |e| {
+            None => plan.extraordinary.get(i as usize - polar).map_or(1, |e| {
                 3u64.saturating_mul(e.sectors.len() as u64)
                     .saturating_mul(depth)
             }),

@@ -37,11 +37,13 @@
 use crate::adaptive::base::{plain_base, tagged_base, TaggedBase};
 use crate::adaptive::subdivide::Rules;
 use crate::adaptive::{self, AdaptiveOptions};
-use crate::caps::{ev_config, is_fan, polar_config, EvConfig, PolarConfig, Reason};
+use crate::caps::{
+    extraordinary_config, is_fan, polar_config, ExtraordinaryConfig, PolarConfig, Reason,
+};
 use crate::chart::{Affine, FaceChart};
 use crate::error::MeshError;
 use crate::global_step::{try_global_step, PolarSeed};
-use crate::grid::{face_grid, interior_face_grid, Combo};
+use crate::grid::{face_grid, interior_face_grid, GridPoint};
 use crate::input::MeshInput;
 use crate::mem;
 use crate::stencil::{Primvar, StencilTable};
@@ -160,19 +162,19 @@ pub struct PolarPlan {
     /// First-step rule of the first cap step ([`FirstStep::Plain`] when the
     /// refinement step already took the C²PS first step).
     pub first: FirstStep,
-    /// Refinement steps the pole has had (the cap's level-0 unit is `2^-pre`
+    /// Refinement steps the pole has had (the cap's level-0 unit is `2^-prior_steps`
     /// of the input's).
-    pub pre: u32,
+    pub prior_steps: u32,
     /// Per cap column at the analysed level: the input triangle it lies in.
     pub triangles: Vec<u32>,
-    /// With `pre = 0`, per column: the quad between links 1 and 2 and its
+    /// With `prior_steps = 0`, per column: the quad between links 1 and 2 and its
     /// map from polar coordinates `(r − 1, τn − j)` to its own square.
     pub quads: Vec<FaceChart>,
 }
 
 /// An EG or Catmull-Clark cap.
 #[derive(Clone, Debug, PartialEq)]
-pub struct EvPlan {
+pub struct ExtraordinaryCapPlan {
     /// The input vertex, or `None` for the centre of an input face that is
     /// not a quad (made a vertex by refinement).
     pub vertex: Option<u32>,
@@ -234,7 +236,7 @@ pub struct SurfacePlan<'t> {
     /// C²PS caps.
     pub polar: Vec<PolarPlan>,
     /// EG and Catmull-Clark caps.
-    pub ev: Vec<EvPlan>,
+    pub extraordinary: Vec<ExtraordinaryCapPlan>,
     /// The order [`crate::Evaluator::evaluate`] emits the regular patches
     /// and caps in, each once: first the regular faces and caps of the
     /// analysed level (the module doc's rules 1–3), by the input face they
@@ -312,14 +314,14 @@ fn face_ranks(topo: Option<&Topology>, faces: usize) -> Result<Vec<u32>, MeshErr
 /// (an interior face, the common case, kept small), or with phantom points.
 enum RegularGrid {
     Vertices([[u32; 4]; 4]),
-    Phantoms(Box<[[Combo; 4]; 4]>),
+    Phantoms(Box<[[GridPoint; 4]; 4]>),
 }
 
 /// One analysis pass on one level.
 struct Pass {
     regular: Vec<(u32, RegularGrid, u8)>,
     polar: Vec<PolarConfig>,
-    ev: Vec<(EvConfig, Scheme, Option<usize>)>,
+    extraordinary: Vec<(ExtraordinaryConfig, Scheme, Option<usize>)>,
     /// Per face of the level: the reason it is uncovered, if it is.
     uncovered: Vec<Option<Reason>>,
     /// Vertices with a cap configuration type (a fan, an extraordinary
@@ -335,7 +337,7 @@ impl<'t> SurfacePlan<'t> {
     /// `n·2^m` columns). Saturates at `u64::MAX`.
     pub fn patch_count(&self) -> u64 {
         let depth = u64::from(self.options.depth);
-        let ev = self.ev.iter().map(|e| {
+        let ev = self.extraordinary.iter().map(|e| {
             3u64.saturating_mul(e.sectors.len() as u64)
                 .saturating_mul(depth)
         });
@@ -399,7 +401,7 @@ impl<'t> SurfacePlan<'t> {
             None => Pass {
                 regular: Vec::new(),
                 polar: Vec::new(),
-                ev: Vec::new(),
+                extraordinary: Vec::new(),
                 uncovered: mem::filled(input_faces, Some(Reason::Feature))?,
                 fallbacks: Vec::new(),
             },
@@ -470,7 +472,7 @@ impl<'t> SurfacePlan<'t> {
             phantoms: StencilTable::new(),
             regular: Vec::new(),
             polar: Vec::new(),
-            ev: Vec::new(),
+            extraordinary: Vec::new(),
             order: Vec::new(),
             uncovered: Vec::new(),
             needed_refinement: needed,
@@ -489,7 +491,7 @@ impl<'t> SurfacePlan<'t> {
                     c[f as usize] = true;
                 }
             }
-            for (e, _, _) in &pass.ev {
+            for (e, _, _) in &pass.extraordinary {
                 for &(f, _) in &e.sectors {
                     c[f as usize] = true;
                 }
@@ -499,12 +501,12 @@ impl<'t> SurfacePlan<'t> {
         if let Some(level_topo) = &level_topo {
             mem::reserve(&mut plan.regular, pass.regular.len())?;
             mem::reserve(&mut plan.polar, pass.polar.len())?;
-            mem::reserve(&mut plan.ev, pass.ev.len())?;
+            mem::reserve(&mut plan.extraordinary, pass.extraordinary.len())?;
             plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
         }
         // Patches and caps of the analysed level (the adaptive refinement's
         // come after them).
-        let analysed = (plan.regular.len(), plan.ev.len());
+        let analysed = (plan.regular.len(), plan.extraordinary.len());
         // Every other face: adaptive refinement over the analysed level
         // (its base level built only when some face needs it).
         if pass.uncovered.iter().any(Option::is_some) {
@@ -552,17 +554,19 @@ impl<'t> SurfacePlan<'t> {
                 .min();
             keyed.push((key.unwrap_or(NONE), Unit::Cap(i as u32)));
         }
-        for (i, e) in self.ev[..analysed.1].iter().enumerate() {
+        for (i, e) in self.extraordinary[..analysed.1].iter().enumerate() {
             let key = e.sectors.iter().map(|s| rank_of(s.face)).min();
             keyed.push((key.unwrap_or(NONE), Unit::Cap((polar + i) as u32)));
         }
         keyed.sort_unstable();
-        let total = self.regular.len() + polar + self.ev.len();
+        let total = self.regular.len() + polar + self.extraordinary.len();
         let mut order = mem::with_capacity(total)?;
         order.extend(keyed.into_iter().map(|(_, u)| u));
         drop(rank);
         order.extend((analysed.0..self.regular.len()).map(|i| Unit::Regular(i as u32)));
-        order.extend((polar + analysed.1..polar + self.ev.len()).map(|i| Unit::Cap(i as u32)));
+        order.extend(
+            (polar + analysed.1..polar + self.extraordinary.len()).map(|i| Unit::Cap(i as u32)),
+        );
         Ok(order)
     }
 
@@ -616,7 +620,7 @@ impl<'t> SurfacePlan<'t> {
         for c in &pass.polar {
             self.push_polar(level_topo, c, charts, pole_steps[c.pole as usize]);
         }
-        for (e, scheme, table) in &pass.ev {
+        for (e, scheme, table) in &pass.extraordinary {
             let sectors = e
                 .sectors
                 .iter()
@@ -634,7 +638,7 @@ impl<'t> SurfacePlan<'t> {
                 // A face point: all its sectors lie in one input face.
                 None => (None, Some(charts[e.sectors[0].0 as usize].face)),
             };
-            self.ev.push(EvPlan {
+            self.extraordinary.push(ExtraordinaryCapPlan {
                 vertex,
                 face,
                 scheme: *scheme,
@@ -718,7 +722,7 @@ impl<'t> SurfacePlan<'t> {
             .filter_map(|cap| a.points.vertex_origin(cap.center))
             .collect();
         self.fallbacks.retain(|(v, _)| !capped.contains(v));
-        mem::reserve(&mut self.ev, a.caps.len())?;
+        mem::reserve(&mut self.extraordinary, a.caps.len())?;
         for cap in &a.caps {
             let sectors: Vec<FaceChart> = cap.sectors.iter().flatten().copied().collect();
             let n = sectors.len();
@@ -727,7 +731,7 @@ impl<'t> SurfacePlan<'t> {
             // input face whose centre (or whose centre's child) it is.
             let vertex = origin.filter(|&v| (v as usize) < self.input_vertices);
             let (scheme, table) = self.options.cap_scheme(n);
-            self.ev.push(EvPlan {
+            self.extraordinary.push(ExtraordinaryCapPlan {
                 vertex,
                 face: vertex.is_none().then_some(sectors[0].face),
                 scheme,
@@ -755,7 +759,7 @@ impl<'t> SurfacePlan<'t> {
 
     /// Working-point index of a grid entry: the vertex itself, or a new
     /// phantom point.
-    fn point(&mut self, c: &Combo) -> u32 {
+    fn point(&mut self, c: &GridPoint) -> u32 {
         match c.as_vertex() {
             Some(v) => v,
             None => self.vertices as u32 + self.phantoms.push_row(c.terms().iter().copied()),
@@ -810,7 +814,7 @@ impl<'t> SurfacePlan<'t> {
             } else {
                 FirstStep::Uniform
             },
-            pre,
+            prior_steps: pre,
             triangles: c
                 .triangles
                 .iter()
@@ -893,7 +897,7 @@ fn analyse(
         // At most one regular patch per face.
         regular: mem::with_capacity(nf)?,
         polar: Vec::new(),
-        ev: Vec::new(),
+        extraordinary: Vec::new(),
         uncovered: Vec::new(),
         fallbacks: Vec::new(),
     };
@@ -946,7 +950,7 @@ fn analyse(
             vertex_reason[v] = Some(Reason::ValenceTwo);
             continue;
         }
-        match ev_config(t, v) {
+        match extraordinary_config(t, v) {
             Ok(e) => {
                 let faces: Vec<u32> = e.sectors.iter().map(|&(f, _)| f).collect();
                 if !around_clean(&faces) {
@@ -958,7 +962,7 @@ fn analyse(
                     continue;
                 }
                 let (scheme, table) = options.cap_scheme(n);
-                pass.ev.push((e, scheme, table));
+                pass.extraordinary.push((e, scheme, table));
             }
             Err(r) => vertex_reason[v] = Some(r),
         }

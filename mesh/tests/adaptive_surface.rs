@@ -64,7 +64,7 @@ fn coverage(plan: &SurfacePlan<'_>, c: &Collect<f64>) -> HashMap<(u32, Option<u8
     }
     // A cap's last hole: the central 2^-depth square of each sector.
     let side = 0.5f64.powi(plan.options.depth as i32);
-    for e in &plan.ev {
+    for e in &plan.extraordinary {
         for s in &e.sectors {
             *area.entry((s.face, s.corner)).or_default() += det(&s.map) * side * side;
         }
@@ -325,9 +325,14 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
     // crease rules.
     let m = samples::two_beam_corner();
     let (plain, _) = plan_and_evaluate(&m, 3, false);
-    let eg = |p: &SurfacePlan<'_>| p.ev.iter().filter(|e| e.scheme == Scheme::Eg).count();
+    let eg = |p: &SurfacePlan<'_>| {
+        p.extraordinary
+            .iter()
+            .filter(|e| e.scheme == Scheme::Eg)
+            .count()
+    };
     assert!(eg(&plain) >= 2);
-    let v = plain.ev[0].vertex.expect("an input vertex");
+    let v = plain.extraordinary[0].vertex.expect("an input vertex");
     let w = m
         .faces
         .iter()
@@ -340,7 +345,7 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
     tagged.tags.creases.push(crease(v, w, 10.0));
     let (plan, c) = plan_and_evaluate(&tagged, 3, false);
     assert!(
-        plan.ev.iter().all(|e| e.vertex != Some(v)),
+        plan.extraordinary.iter().all(|e| e.vertex != Some(v)),
         "cap at the crease kept"
     );
     assert!(
@@ -352,7 +357,7 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
     // The caps whose faces the crease only neighbours come back a level
     // further in, where it is out of their c-nets' reach.
     let vertices = |p: &SurfacePlan<'_>| {
-        let mut v: Vec<Option<u32>> = p.ev.iter().map(|e| e.vertex).collect();
+        let mut v: Vec<Option<u32>> = p.extraordinary.iter().map(|e| e.vertex).collect();
         v.sort();
         v
     };
@@ -364,7 +369,7 @@ fn eg_and_c2ps_caps_stay_where_no_tag_reaches() {
     semi.tags.creases.push(crease(v, w, 2.0));
     let (plan, c) = plan_and_evaluate(&semi, 3, false);
     let at_v: Vec<u32> = plan
-        .ev
+        .extraordinary
         .iter()
         .filter(|e| e.vertex == Some(v))
         .map(|e| e.level)
@@ -471,7 +476,7 @@ fn refinement_stays_local_and_caps_come_one_level_in() {
             assert_eq!((on_f[0].kind, on_f[0].level), (PatchKind::Regular, 0));
         }
         let mut corners: Vec<(Option<u32>, u32, usize)> = plan
-            .ev
+            .extraordinary
             .iter()
             .map(|e| {
                 assert_eq!(e.scheme, scheme, "cc {cc}");
@@ -563,7 +568,7 @@ fn adaptive_caps_join_their_surroundings_c2() {
     let (plan, c) = plan_and_evaluate(&hand, 3, false);
     assert!(plan.steps.is_empty());
     let eg_levels: Vec<u32> = plan
-        .ev
+        .extraordinary
         .iter()
         .filter(|e| e.scheme == Scheme::Eg)
         .map(|e| e.level)

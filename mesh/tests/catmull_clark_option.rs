@@ -77,7 +77,7 @@ fn valence_3_and_5_get_catmull_clark_caps_equal_to_the_reference() {
         assert!(eg.caps.iter().all(|c| c.scheme == Scheme::Eg));
         let (plan, out) = surface_with(&m, depth, true);
         assert!(plan.steps.is_empty() && plan.uncovered.is_empty());
-        assert_eq!(plan.ev.len(), 1);
+        assert_eq!(plan.extraordinary.len(), 1);
         let cap = &out.caps[0];
         assert_eq!(
             (cap.scheme, cap.valence, cap.vertex),
@@ -128,7 +128,7 @@ fn poles_become_catmull_clark_caps_and_closed_meshes_stay_closed_and_smooth() {
         let (plan, out) = surface_with(&m, depth, true);
         assert!(plan.uncovered.is_empty(), "{name}: {:?}", plan.uncovered);
         assert!(plan.polar.is_empty(), "{name}: a C²PS cap is left");
-        assert!(!plan.ev.is_empty());
+        assert!(!plan.extraordinary.is_empty());
         assert!(out.caps.iter().all(|c| c.scheme == Scheme::CatmullClark));
         assert!(out
             .patches

@@ -341,7 +341,7 @@ fn weld_table_lets_go_of_marked_boundaries() {
 fn the_emission_order_gives_every_patch_and_cap_once() {
     for (name, mesh) in meshes() {
         let plan = plan(&mesh, 2);
-        let caps = plan.polar.len() + plan.ev.len();
+        let caps = plan.polar.len() + plan.extraordinary.len();
         let mut regular = vec![0; plan.regular.len()];
         let mut cap = vec![0; caps];
         for u in &plan.order {
