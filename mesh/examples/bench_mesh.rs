@@ -1,9 +1,13 @@
 //! Writes a benchmark mesh as Wavefront OBJ to stdout, for
 //! `scripts/surface-scaling.sh`:
 //!
-//! - `mixed FACES`: [`samples::feature_mix`] of at least `FACES` faces
-//!   (quads with valence-3 and valence-7 points, triangle fans around
-//!   valence-12 poles);
+//! - `mixed FACES`: the parts of [`samples::feature_mix`] (a mushroom with
+//!   two valence-12 poles, a rounded cube with eight valence-3 points, a
+//!   valence-7 disk; 1,077 faces a copy of the three) copied until there
+//!   are at least `FACES` faces, on a cubic lattice 10 units apart (a row,
+//!   as `feature_mix` lays them, makes the bounding box and with it the
+//!   CLI's weld tolerance, 1e-9 of its size, grow with the count: at 10⁶
+//!   faces it exceeds the sample spacing around a depth-6 pole);
 //! - `triangles FACES`: a torus of about `FACES` triangles (a `k × k` quad
 //!   torus with every quad split along a diagonal: every vertex of
 //!   valence 6, so every vertex and every face centre is a cap);
@@ -15,6 +19,36 @@
 use capdiv_mesh::{samples, MeshInput};
 use std::collections::HashMap;
 use std::io::{BufWriter, Write};
+
+/// Copies of the parts of [`samples::feature_mix`], at least `faces`
+/// faces, on a cubic lattice 10 units apart.
+fn mixed(faces: usize) -> MeshInput {
+    let parts = [
+        samples::mushroom(),
+        samples::rounded_cube(6),
+        samples::extraordinary_disk(7, 5),
+    ];
+    let per: usize = parts.iter().map(|m| m.faces.len()).sum();
+    let count = parts.len() * faces.div_ceil(per).max(1);
+    let side = (1..).find(|s| s * s * s >= count).unwrap_or(1);
+    let mut out = MeshInput::default();
+    for k in 0..count {
+        let m = &parts[k % parts.len()];
+        let base = out.vertices.len() as u32;
+        let at = [k % side, (k / side) % side, k / (side * side)].map(|c| 10.0 * c as f64);
+        out.vertices.extend(
+            m.vertices
+                .iter()
+                .map(|p| [p[0] + at[0], p[1] + at[1], p[2] + at[2]]),
+        );
+        out.faces.extend(
+            m.faces
+                .iter()
+                .map(|f| f.iter().map(|&v| v + base).collect()),
+        );
+    }
+    out
+}
 
 /// A torus of `2·k²` triangles (`k ≥ 3`).
 fn triangle_torus(k: usize) -> MeshInput {
@@ -113,7 +147,7 @@ fn main() {
             .unwrap_or_else(|| usage())
     };
     let mesh = match args.first().map(String::as_str) {
-        Some("mixed") => samples::feature_mix(number(1)),
+        Some("mixed") => mixed(number(1)),
         Some("triangles") => {
             let k = ((number(1) as f64 / 2.0).sqrt().round()) as usize;
             triangle_torus(k)
