@@ -90,7 +90,11 @@ pub const VERTEX_BUDGET: usize = 40_000;
 /// depth 4).
 pub fn auto_grid(plan: &SurfacePlan<'_>) -> usize {
     let caps = plan.polar.iter().map(|p| p.valence).sum::<usize>()
-        + plan.extraordinary.iter().map(|e| e.sectors.len()).sum::<usize>();
+        + plan
+            .extraordinary
+            .iter()
+            .map(|e| e.sectors.len())
+            .sum::<usize>();
     let coarse = plan.regular.len() + 2 * caps;
     [8, 4, 2]
         .into_iter()
