@@ -17,7 +17,9 @@
 //! `valgrind --tool=callgrind --collect-atstart=no --toggle-collect='*probe_*'`;
 //! it runs one workload once (f64, or f32).
 
-use capdiv::{BicubicPatch, FirstStep, Point3, PolarNetBuf, PolarStream, Real, StreamOptions};
+use capdiv::{
+    BicubicPatch, FirstStep, Point3, PolarNetBuf, PolarStream, Real, SliceStorage, StreamOptions,
+};
 use criterion::{BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
 use std::time::Duration;
@@ -73,7 +75,7 @@ fn probe_in_place<R: Real>(
     links: &[Vec<[R; 3]>],
     depth: u32,
 ) -> usize {
-    let mut net = PolarNetBuf::new(pole, links, ls, rs).unwrap();
+    let mut net = PolarNetBuf::new_in(pole, links, SliceStorage::new(ls, rs)).unwrap();
     let mut count = 0;
     for level in 0..=depth {
         for p in net.ring_patches().unwrap() {
@@ -95,8 +97,8 @@ fn bench<R: Real>(c: &mut Criterion, name: &str) {
     let (pole, links) = sample::<R>();
     let mut state = Box::new(PolarStream::<R, MAX>::empty());
     let cap = 6 << MAX;
-    let mut ls = vec![Point3::<R>::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
-    let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
+    let mut ls = vec![Point3::<R>::ZERO; SliceStorage::<R>::links_len(cap)];
+    let mut rs = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
     for depth in [6u32, 8, 10, 12] {
         let n = patches(depth);
         let mut g = c.benchmark_group(format!("stream-{name}"));
@@ -156,8 +158,8 @@ fn probe<R: Real>(which: &str, depth: u32) -> usize {
         probe_stream(&mut state, pole, &links, depth)
     } else {
         let cap = 6 << depth;
-        let mut ls = vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
-        let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
+        let mut ls = vec![Point3::ZERO; SliceStorage::<R>::links_len(cap)];
+        let mut rs = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
         probe_in_place(&mut ls, &mut rs, pole, &links, depth)
     }
 }

@@ -71,7 +71,7 @@ pub use eg::{CNet, DNet, EgSubdivision, RuleTable};
 pub use error::Error;
 pub use point::Point3;
 pub use polar::{
-    FirstStep, OuterRegion, PolarNet, PolarNetBuf, PolarStream, PoleGeometry, PoleJet,
-    StreamOptions, StreamedPatch,
+    ArrayStorage, FirstStep, NetStorage, OuterRegion, PolarNet, PolarNetBuf, PolarNetInner,
+    PolarStream, PoleGeometry, PoleJet, SliceStorage, StreamOptions, StreamedPatch,
 };
 pub use real::Real;

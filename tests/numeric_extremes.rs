@@ -177,7 +177,7 @@ fn polar_outputs_finite<R: Real>(net: &PolarNet<R, POLAR_CAP>) -> Result<(), Tes
         Ok(p) => prop_assert!(finite(p.points.into_iter().flatten())),
         Err(e) => prop_assert!(matches!(e, Error::NotEnoughLinks { .. }), "{e:?}"),
     }
-    if let Ok(jet) = PoleJet::try_of(net) {
+    if let Ok(jet) = PoleJet::of(net).finite() {
         prop_assert!(finite(jet.p), "jet {:?}", jet.p);
         prop_assert!(jet.limit().is_finite());
         if let Ok(g) = jet.geometry() {
@@ -458,7 +458,7 @@ fn measured_edges() {
                         break;
                     }
                 }
-                match PoleJet::try_of(&net).map(|j| j.geometry()) {
+                match PoleJet::of(&net).finite().map(|j| j.geometry()) {
                     Ok(Ok(_)) => {}
                     _ => fails[1] = true,
                 }
@@ -546,7 +546,7 @@ fn measured_edges() {
 /// the net as it was; scaled down below the bound, the same net refines.
 #[test]
 fn rts_step_reports_an_overflowing_net_like_step() {
-    use capdiv::PolarNetBuf;
+    use capdiv::{PolarNetBuf, SliceStorage};
     const N: usize = 6;
     let net_at = |scale: f32| -> ([f32; 3], Vec<Vec<[f32; 3]>>) {
         let links = (1..=5)
@@ -574,10 +574,15 @@ fn rts_step_reports_an_overflowing_net_like_step() {
     assert_eq!(net.rts_step(), Err(Error::NonFinite));
     assert_eq!(state(&net), before, "a failed RTS step changed the net");
 
-    let cap = PolarNetBuf::<f32>::capacity_for(N, 0).unwrap();
-    let mut link_storage = vec![Point3([0.0f32; 3]); PolarNetBuf::<f32>::link_storage_len(cap)];
-    let mut root_storage = vec![[0.0f32; 2]; PolarNetBuf::<f32>::root_storage_len(cap)];
-    let mut buf = PolarNetBuf::new(pole, &links, &mut link_storage, &mut root_storage).unwrap();
+    let cap = capdiv::polar::capacity_for(N, 0).unwrap();
+    let mut link_storage = vec![Point3([0.0f32; 3]); SliceStorage::<f32>::links_len(cap)];
+    let mut root_storage = vec![[0.0f32; 2]; SliceStorage::<f32>::roots_len(cap)];
+    let mut buf = PolarNetBuf::new_in(
+        pole,
+        &links,
+        SliceStorage::new(&mut link_storage, &mut root_storage),
+    )
+    .unwrap();
     let pole_before = buf.pole();
     let link1_before = buf.link(1).unwrap().to_vec();
     assert_eq!(buf.rts_step(), Err(Error::NonFinite));

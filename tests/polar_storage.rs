@@ -4,7 +4,9 @@
 //! in the same order; storage too small is `CapacityExceeded` with the
 //! storage and the net unchanged.
 
-use capdiv::{BicubicPatch, Error, FirstStep, Point3, PolarNet, PolarNetBuf, PoleJet, Real};
+use capdiv::{
+    BicubicPatch, Error, FirstStep, Point3, PolarNet, PolarNetBuf, PoleJet, Real, SliceStorage,
+};
 use proptest::prelude::*;
 
 /// Capacity of the reference nets: valence 64, depth 6.
@@ -43,7 +45,7 @@ fn observe<R: Real, const C: usize>(net: &PolarNet<R, C>) -> Vec<Vec<u64>> {
             net.ring_len() as u64,
         ],
         bits(&[net.pole()]),
-        root_bits(net.roots().as_slice()),
+        root_bits(net.roots()),
         bits(&PoleJet::of(net).p),
     ];
     for i in 0..=6 {
@@ -74,7 +76,7 @@ fn observe_buf<R: Real>(net: &PolarNetBuf<'_, R>) -> Vec<Vec<u64>> {
         ],
         bits(&[net.pole()]),
         root_bits(net.roots()),
-        bits(&PoleJet::of_buf(net).p),
+        bits(&PoleJet::of(net).p),
     ];
     for i in 0..=6 {
         out.push(net.link(i).map_or(vec![u64::MAX], bits));
@@ -145,13 +147,18 @@ fn compare<R: Real>(
     let links = cast::<R>(links);
     let n = links[0].len();
     let depth = ops.iter().filter(|&&c| c).count() as u32;
-    let cap = PolarNetBuf::<R>::capacity_for(n, depth).unwrap();
+    let cap = capdiv::polar::capacity_for(n, depth).unwrap();
     prop_assert!(cap <= CAP);
     let mut reference: Box<PolarNet<R, CAP>> = Box::new(PolarNet::empty());
     reference.reset(pole, &links).unwrap();
-    let mut link_storage = vec![Point3([R::ZERO; 3]); PolarNetBuf::<R>::link_storage_len(cap)];
-    let mut root_storage = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
-    let mut net = PolarNetBuf::new(pole, &links, &mut link_storage, &mut root_storage).unwrap();
+    let mut link_storage = vec![Point3([R::ZERO; 3]); SliceStorage::<R>::links_len(cap)];
+    let mut root_storage = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
+    let mut net = PolarNetBuf::new_in(
+        pole,
+        &links,
+        SliceStorage::new(&mut link_storage, &mut root_storage),
+    )
+    .unwrap();
     prop_assert_eq!(net.capacity(), cap);
     prop_assert_eq!(observe_buf(&net), observe(&*reference));
     for &c2ps in ops {
@@ -247,20 +254,20 @@ proptest! {
         let sentinel = Point3([-7.5f64; 3]);
         let (l_len, r_len) = if links_short {
             // Links short, roots ample.
-            (PolarNetBuf::<f64>::link_storage_len(cap) + 4, n + 10)
+            (SliceStorage::<f64>::links_len(cap) + 4, n + 10)
         } else {
-            (PolarNetBuf::<f64>::link_storage_len(n) + 4, cap)
+            (SliceStorage::<f64>::links_len(n) + 4, cap)
         };
         let mut ls = vec![sentinel; l_len];
         let mut rs = vec![[0.25f64; 2]; r_len];
-        let r = PolarNetBuf::new(pole, &links, &mut ls, &mut rs);
+        let r = PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs));
         prop_assert_eq!(r.err(), Some(Error::CapacityExceeded { needed: n, capacity: cap }));
         prop_assert!(ls.iter().all(|p| *p == sentinel));
         prop_assert!(rs.iter().all(|r| *r == [0.25; 2]));
 
         // A net holding a smaller configuration refuses the larger one unchanged.
         let (small_pole, small_links) = config(3, 4, &noise, seed ^ 1);
-        let mut net = PolarNetBuf::new(small_pole, &small_links, &mut ls, &mut rs).unwrap();
+        let mut net = PolarNetBuf::new_in(small_pole, &small_links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
         net.step(FirstStep::Plain).unwrap();
         let before = observe_buf(&net);
         prop_assert_eq!(
@@ -268,12 +275,12 @@ proptest! {
             Err(Error::CapacityExceeded { needed: n, capacity: cap })
         );
         prop_assert_eq!(observe_buf(&net), before);
-        let (ls2, rs2) = net.into_storage();
+        let (ls2, rs2) = net.into_storage().into_parts();
         let (ls2, rs2) = (ls2.to_vec(), rs2.to_vec());
-        let mut net = PolarNetBuf::new(small_pole, &small_links, &mut ls, &mut rs).unwrap();
+        let mut net = PolarNetBuf::new_in(small_pole, &small_links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
         net.step(FirstStep::Plain).unwrap();
         let _ = net.reset(pole, &links);
-        let (ls3, rs3) = net.into_storage();
+        let (ls3, rs3) = net.into_storage().into_parts();
         prop_assert_eq!(bits(&ls2), bits(ls3));
         prop_assert_eq!(root_bits(&rs2), root_bits(rs3));
     }
@@ -311,9 +318,9 @@ proptest! {
         const SMALL: usize = 64;
         let expected = PolarNet::<f64, SMALL>::new(pole, &links).err();
         let sentinel = Point3([3.25f64; 3]);
-        let mut ls = vec![sentinel; PolarNetBuf::<f64>::link_storage_len(SMALL)];
-        let mut rs = vec![[0.5f64; 2]; PolarNetBuf::<f64>::root_storage_len(SMALL)];
-        let got = PolarNetBuf::new(pole, &links, &mut ls, &mut rs).err();
+        let mut ls = vec![sentinel; SliceStorage::<f64>::links_len(SMALL)];
+        let mut rs = vec![[0.5f64; 2]; SliceStorage::<f64>::roots_len(SMALL)];
+        let got = PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs)).err();
         prop_assert_eq!(got, expected);
         if expected.is_some() {
             prop_assert!(ls.iter().all(|p| *p == sentinel));
@@ -324,7 +331,7 @@ proptest! {
         let mut flat: Vec<f64> = links.iter().flatten().flatten().copied().collect();
         flat.truncate(flat.len().saturating_sub(at.index(4)));
         let expected = PolarNet::<f64, SMALL>::from_flat(pole, n, &flat).err();
-        let got = PolarNetBuf::from_flat(pole, n, &flat, &mut ls, &mut rs).err();
+        let got = PolarNetBuf::from_flat_in(pole, n, &flat, SliceStorage::new(&mut ls, &mut rs)).err();
         prop_assert_eq!(got, expected);
     }
 }
@@ -333,19 +340,19 @@ proptest! {
 fn unsupported_valence_and_order_of_errors() {
     // Odd part 131 > 127: unsupported, checked after the capacity.
     let (pole, links) = config(131, 2, &[0.3, -0.2, 0.7], 1);
-    let mut ls = vec![Point3::ZERO; PolarNetBuf::<f64>::link_storage_len(256)];
+    let mut ls = vec![Point3::ZERO; SliceStorage::<f64>::links_len(256)];
     let mut rs = vec![[0.0f64; 2]; 256];
     assert_eq!(
-        PolarNetBuf::new(pole, &links, &mut ls, &mut rs).err(),
+        PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs)).err(),
         PolarNet::<f64, 256>::new(pole, &links).err()
     );
     assert_eq!(
-        PolarNetBuf::new(pole, &links, &mut ls, &mut rs).err(),
+        PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs)).err(),
         Some(Error::ValenceUnsupported { valence: 131 })
     );
     let (small_ls, small_rs) = (&mut ls[..5 * 100], &mut rs[..100]);
     assert_eq!(
-        PolarNetBuf::new(pole, &links, small_ls, small_rs).err(),
+        PolarNetBuf::new_in(pole, &links, SliceStorage::new(small_ls, small_rs)).err(),
         Some(Error::CapacityExceeded {
             needed: 131,
             capacity: 100
@@ -357,7 +364,7 @@ fn unsupported_valence_and_order_of_errors() {
 fn empty_net_behaves_like_polar_net_empty() {
     let mut ls = [Point3::<f32>::ZERO; 40];
     let mut rs = [[0.0f32; 2]; 8];
-    let mut net = PolarNetBuf::empty(&mut ls, &mut rs);
+    let mut net = PolarNetBuf::empty_in(SliceStorage::new(&mut ls, &mut rs));
     let mut reference: PolarNet<f32, 8> = PolarNet::empty();
     assert_eq!(net.capacity(), 8);
     assert_eq!(observe_buf(&net), observe(&reference));
@@ -368,7 +375,7 @@ fn empty_net_behaves_like_polar_net_empty() {
     assert_eq!(net.rts_step(), reference.rts_step());
     assert_eq!(observe_buf(&net), observe(&reference));
     assert_eq!(
-        PoleJet::of_buf(&net).geometry(),
+        PoleJet::of(&net).geometry(),
         PoleJet::of(&reference).geometry()
     );
     // Zero-sized storage: capacity 0, every valence exceeds it.
@@ -377,7 +384,12 @@ fn empty_net_behaves_like_polar_net_empty() {
     let (pole, links) = config(3, 2, &[0.1], 0);
     let links = cast::<f32>(&links);
     assert_eq!(
-        PolarNetBuf::new(pole.map(|c| c as f32), &links, &mut none, &mut no_roots).err(),
+        PolarNetBuf::new_in(
+            pole.map(|c| c as f32),
+            &links,
+            SliceStorage::new(&mut none, &mut no_roots)
+        )
+        .err(),
         Some(Error::CapacityExceeded {
             needed: 3,
             capacity: 0
@@ -392,23 +404,23 @@ fn empty_net_behaves_like_polar_net_empty() {
 fn large_capacity_in_heap_storage() {
     // Under Miri (millions of points are out of reach there) depth 5.
     let depth = if cfg!(miri) { 5 } else { 15 };
-    let cap = PolarNetBuf::<f64>::capacity_for(4, depth).unwrap();
+    let cap = capdiv::polar::capacity_for(4, depth).unwrap();
     assert_eq!(cap, 1 << (depth + 2));
-    let mut ls = vec![Point3::<f64>::ZERO; PolarNetBuf::<f64>::link_storage_len(cap)];
-    let mut rs = vec![[0.0f64; 2]; PolarNetBuf::<f64>::root_storage_len(cap)];
+    let mut ls = vec![Point3::<f64>::ZERO; SliceStorage::<f64>::links_len(cap)];
+    let mut rs = vec![[0.0f64; 2]; SliceStorage::<f64>::roots_len(cap)];
     let (pole, links) = config(4, 3, &[0.3, -0.1, 0.2, 0.5], 9);
-    let mut net = PolarNetBuf::new(pole, &links, &mut ls, &mut rs).unwrap();
+    let mut net = PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
     for _ in 0..depth {
         net.step(FirstStep::Uniform).unwrap();
     }
     assert_eq!(net.valence(), 1 << (depth + 2));
     assert_eq!(net.ring_patches().unwrap().len(), 1 << (depth + 3));
-    let jet = PoleJet::of_buf(&net);
+    let jet = PoleJet::of(&net);
     assert!(jet.p.iter().all(|p| p.0.iter().all(|c| c.is_finite())));
     assert!(matches!(
         net.step(FirstStep::Uniform),
         Err(Error::CapacityExceeded { .. })
     ));
-    assert_eq!(PolarNetBuf::<f64>::capacity_for(3, 64), None);
-    assert_eq!(PolarNetBuf::<f64>::capacity_for(usize::MAX, 1), None);
+    assert_eq!(capdiv::polar::capacity_for(3, 64), None);
+    assert_eq!(capdiv::polar::capacity_for(usize::MAX, 1), None);
 }

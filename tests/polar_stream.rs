@@ -15,8 +15,8 @@
 #![cfg(not(miri))]
 
 use capdiv::{
-    BicubicPatch, Error, FirstStep, Point3, PolarNetBuf, PolarStream, PoleJet, Real, StreamOptions,
-    StreamedPatch,
+    BicubicPatch, Error, FirstStep, Point3, PolarNetBuf, PolarStream, PoleJet, Real, SliceStorage,
+    StreamOptions, StreamedPatch,
 };
 use proptest::prelude::*;
 use std::collections::BTreeMap;
@@ -78,10 +78,10 @@ fn in_place<R: Real>(
 ) -> (Vec<Vec<BicubicPatch<R>>>, PoleJet<R>) {
     let n = links[0].len();
     let cap = n << depth;
-    let mut ls = vec![Point3::<R>::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
-    let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
-    let mut net = PolarNetBuf::new(pole, links, &mut ls, &mut rs).unwrap();
-    let jet = PoleJet::of_buf(&net);
+    let mut ls = vec![Point3::<R>::ZERO; SliceStorage::<R>::links_len(cap)];
+    let mut rs = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
+    let mut net = PolarNetBuf::new_in(pole, links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
+    let jet = PoleJet::of(&net);
     let mut rings = Vec::new();
     for level in 0..=depth {
         rings.push(match net.ring_patches() {

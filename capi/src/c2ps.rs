@@ -4,7 +4,7 @@
 
 use crate::buffers::{input, output, point, split_work, WORK_PER_CAP};
 use crate::codes::{code, CAPDIV_BAD_BUFFER};
-use capdiv::{Error, FirstStep, PolarNetBuf, PoleJet, Real};
+use capdiv::{Error, FirstStep, PolarNetBuf, PoleJet, Real, SliceStorage};
 
 /// Values the jet call writes.
 pub(crate) const JET_LEN: usize = crate::CAPDIV_JET_LEN;
@@ -25,7 +25,7 @@ fn first_step(plain: u32) -> FirstStep {
 
 /// `valence·2^steps`, `None` on overflow.
 pub fn capacity_for(valence: usize, steps: u32) -> Option<usize> {
-    PolarNetBuf::<f32>::capacity_for(valence, steps)
+    capdiv::polar::capacity_for(valence, steps)
 }
 
 /// Scalars of work buffer for `steps` steps from `valence`: `17·valence·2^steps`.
@@ -58,8 +58,8 @@ pub(crate) unsafe fn refined<R: Real>(
     let (pole, coords) = unsafe { (point(pole), input(coords, coords_len)) };
     let (pole, coords) = (pole?, coords?);
     let (links, roots) = split_work(work);
-    let mut net =
-        PolarNetBuf::from_flat(pole, valence, coords, links, roots).map_err(|e| code(&e))?;
+    let mut net = PolarNetBuf::from_flat_in(pole, valence, coords, SliceStorage::new(links, roots))
+        .map_err(|e| code(&e))?;
     for _ in 0..steps {
         net.step(first_step(plain)).map_err(|e| code(&e))?;
     }
@@ -91,7 +91,7 @@ pub(crate) fn write_jet<R: Real>(net: &PolarNetBuf<'_, R>, out: &mut [R]) -> i32
     let Some(out) = out.get_mut(..JET_LEN) else {
         return CAPDIV_BAD_BUFFER;
     };
-    let jet = PoleJet::of_buf(net);
+    let jet = PoleJet::of(net);
     for (d, s) in out.iter_mut().zip(jet.p.iter().flat_map(|p| p.0)) {
         *d = s;
     }

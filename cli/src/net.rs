@@ -5,7 +5,7 @@
 
 use crate::error::CliError;
 use crate::Scalar;
-use capdiv::{Error, Point3, PolarNetBuf};
+use capdiv::{Error, Point3, PolarNetBuf, SliceStorage};
 
 /// The largest valence a job may reach (17.8 MB of storage in `f64`): a
 /// bound on what a command line can ask for, not on the kernel.
@@ -38,8 +38,8 @@ impl<R: Scalar> NetStorage<R> {
                 max: MAX_VALENCE,
             })?;
         Ok(NetStorage {
-            links: vec![Point3::ZERO; PolarNetBuf::<R>::link_storage_len(cap)],
-            roots: vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)],
+            links: vec![Point3::ZERO; SliceStorage::<R>::links_len(cap)],
+            roots: vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)],
         })
     }
 
@@ -50,7 +50,11 @@ impl<R: Scalar> NetStorage<R> {
         pole: [R; 3],
         links: &[L],
     ) -> Result<PolarNetBuf<'_, R>, Error> {
-        PolarNetBuf::new(pole, links, &mut self.links, &mut self.roots)
+        PolarNetBuf::new_in(
+            pole,
+            links,
+            SliceStorage::new(&mut self.links, &mut self.roots),
+        )
     }
 }
 

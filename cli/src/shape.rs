@@ -228,7 +228,7 @@ impl PolarJob<'_> {
         let kernel = |e| CliError::kernel(self.name, e);
         let (pole, links) = (self.config.pole, &self.config.links);
         let mut net = storage.net(pole, links).map_err(kernel)?;
-        let jet = PoleJet::try_of_buf(&net).map_err(kernel)?;
+        let jet = PoleJet::of(&net).finite().map_err(kernel)?;
         let limit = match jet.geometry() {
             Ok(g) => Limit::Known {
                 gaussian: g.gaussian,

@@ -28,7 +28,7 @@
 //! cfirmware --test c_firmware_qemu`.
 
 use capdiv::eg::{CNet, EgSubdivision};
-use capdiv::{Error, FirstStep, Point3, PolarNetBuf, PoleJet};
+use capdiv::{Error, FirstStep, Point3, PolarNetBuf, PoleJet, SliceStorage};
 use capdiv_embedded_tests::{repo_root, run_with_limit};
 use std::collections::BTreeMap;
 use std::process::Command;
@@ -185,9 +185,14 @@ fn native_c2ps(
     work_len: usize,
 ) -> (Native, Native) {
     let cap = work_len / WORK_PER_POINT;
-    let mut links = vec![Point3::ZERO; PolarNetBuf::<f64>::link_storage_len(cap)];
-    let mut roots = vec![[0.0; 2]; PolarNetBuf::<f64>::root_storage_len(cap)];
-    let mut net = match PolarNetBuf::from_flat(pole, valence, coords, &mut links, &mut roots) {
+    let mut links = vec![Point3::ZERO; SliceStorage::<f64>::links_len(cap)];
+    let mut roots = vec![[0.0; 2]; SliceStorage::<f64>::roots_len(cap)];
+    let mut net = match PolarNetBuf::from_flat_in(
+        pole,
+        valence,
+        coords,
+        SliceStorage::new(&mut links, &mut roots),
+    ) {
         Ok(net) => net,
         Err(e) => return (fail(e), fail(e)),
     };
@@ -202,7 +207,7 @@ fn native_c2ps(
     for i in 1..=held {
         out.extend(net.link(i).unwrap().iter().flat_map(|p| p.0));
     }
-    let jet = PoleJet::of_buf(&net);
+    let jet = PoleJet::of(&net);
     let mut j: Vec<f64> = jet.p.iter().flat_map(|p| p.0).collect();
     match jet.geometry() {
         Ok(g) => {

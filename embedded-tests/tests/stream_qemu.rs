@@ -7,7 +7,7 @@
 //! 3.3 MB at depth 12) — a different code path from the streamed one — and
 //! compared within the f32 bound.
 
-use capdiv::{FirstStep, Point3, PolarNetBuf, PoleJet};
+use capdiv::{FirstStep, Point3, PolarNetBuf, PoleJet, SliceStorage};
 use capdiv_embedded_tests::report::{parse, Entry};
 use capdiv_embedded_tests::{build_firmware, decode_defmt, qemu, run_with_limit};
 use std::collections::BTreeMap;
@@ -63,10 +63,11 @@ fn reference() -> BTreeMap<String, Entry> {
         assert!(out.insert(e.id(), e).is_none());
     };
     let cap = VALENCE << DEPTH;
-    let mut ls = vec![Point3::<f64>::ZERO; PolarNetBuf::<f64>::link_storage_len(cap)];
-    let mut rs = vec![[0.0f64; 2]; PolarNetBuf::<f64>::root_storage_len(cap)];
-    let mut net = PolarNetBuf::new(POLE, &LINKS[..5], &mut ls, &mut rs).unwrap();
-    for (k, q) in PoleJet::of_buf(&net).p.iter().enumerate() {
+    let mut ls = vec![Point3::<f64>::ZERO; SliceStorage::<f64>::links_len(cap)];
+    let mut rs = vec![[0.0f64; 2]; SliceStorage::<f64>::roots_len(cap)];
+    let mut net =
+        PolarNetBuf::new_in(POLE, &LINKS[..5], SliceStorage::new(&mut ls, &mut rs)).unwrap();
+    for (k, q) in PoleJet::of(&net).p.iter().enumerate() {
         add("sjet", &[k], q.0.to_vec());
     }
     for m in 0..=DEPTH {

@@ -11,7 +11,7 @@
 #![no_main]
 
 use arbitrary::{Result, Unstructured};
-use capdiv::{FirstStep, Point3, PolarNet, PolarNetBuf, PoleJet};
+use capdiv::{FirstStep, Point3, PolarNet, PolarNetBuf, PoleJet, SliceStorage};
 use capdiv_fuzz::{all_finite, arb_point, arb_pool, bounded, point_bits, FuzzReal};
 use libfuzzer_sys::fuzz_target;
 
@@ -83,7 +83,7 @@ fn snap_net<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> Vec<u64> {
             point_bits(*p, &mut v);
         }
     }
-    for r in net.roots().as_slice() {
+    for r in net.roots() {
         v.push(r[0].bits());
         v.push(r[1].bits());
     }
@@ -170,7 +170,7 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
     let root_len = u.int_in_range(0..=CAP + 3)?;
     let mut ls = vec![Point3::<R>::ZERO; link_len];
     let mut rs = vec![[R::ZERO; 2]; root_len];
-    let mut buf = PolarNetBuf::empty(&mut ls, &mut rs);
+    let mut buf = PolarNetBuf::empty_in(SliceStorage::new(&mut ls, &mut rs));
     let mut net: Box<PolarNet<R, CAP>> = Box::new(PolarNet::empty());
     // Both nets hold the same configuration while `synced`.
     let mut synced = true;
@@ -318,18 +318,18 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
             }
             _ => {
                 let jn = PoleJet::of(&net);
-                let jb = PoleJet::of_buf(&buf);
+                let jb = PoleJet::of(&buf);
                 if synced {
                     assert_eq!(jet_bits(&jn), jet_bits(&jb));
                 }
                 check_jet(&jn, net_small(&net));
                 check_jet(&jb, buf_small(&buf));
                 // try_of: Ok only when finite, and then the same jet.
-                match PoleJet::try_of(&net) {
+                match PoleJet::of(&net).finite() {
                     Ok(j) => assert_eq!(jet_bits(&j), jet_bits(&jn)),
                     Err(_) => assert!(!all_finite(jn.p)),
                 }
-                match PoleJet::try_of_buf(&buf) {
+                match PoleJet::of(&buf).finite() {
                     Ok(j) => assert_eq!(jet_bits(&j), jet_bits(&jb)),
                     Err(_) => assert!(!all_finite(jb.p)),
                 }

@@ -15,7 +15,9 @@
 #![no_main]
 
 use arbitrary::{Result, Unstructured};
-use capdiv::{BicubicPatch, Error, FirstStep, Point3, PolarNetBuf, PolarStream, StreamOptions};
+use capdiv::{
+    BicubicPatch, Error, FirstStep, Point3, PolarNetBuf, PolarStream, SliceStorage, StreamOptions,
+};
 use capdiv_fuzz::{all_finite, arb_point, arb_pool, max_abs, FuzzReal};
 use libfuzzer_sys::fuzz_target;
 use std::collections::BTreeSet;
@@ -74,9 +76,9 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
         assert_eq!(calls, 0, "patches delivered before an error");
         let e = res.unwrap_err();
         let cap = n.max(3);
-        let mut ls = vec![Point3::<R>::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
-        let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
-        let in_place = PolarNetBuf::new(pole, &links, &mut ls, &mut rs).err();
+        let mut ls = vec![Point3::<R>::ZERO; SliceStorage::<R>::links_len(cap)];
+        let mut rs = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
+        let in_place = PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs)).err();
         match e {
             Error::TooFewLinks { .. }
             | Error::ValenceTooSmall { .. }
@@ -95,9 +97,10 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
 
     // The in-place path, level by level, as far as its steps go.
     let cap = n << depth;
-    let mut ls = vec![Point3::<R>::ZERO; PolarNetBuf::<R>::link_storage_len(cap)];
-    let mut rs = vec![[R::ZERO; 2]; PolarNetBuf::<R>::root_storage_len(cap)];
-    let mut net = PolarNetBuf::new(pole, &links, &mut ls, &mut rs).expect("stream accepted it");
+    let mut ls = vec![Point3::<R>::ZERO; SliceStorage::<R>::links_len(cap)];
+    let mut rs = vec![[R::ZERO; 2]; SliceStorage::<R>::roots_len(cap)];
+    let mut net = PolarNetBuf::new_in(pole, &links, SliceStorage::new(&mut ls, &mut rs))
+        .expect("stream accepted it");
     let mut rings: Vec<Vec<BicubicPatch<R>>> = Vec::new();
     for level in 0..=depth {
         rings.push(net.ring_patches().map(|r| r.collect()).unwrap_or_default());

@@ -24,7 +24,7 @@ fn snapshot<const C: usize>(net: &PolarNet<f64, C>) -> (Polar, usize, u32, usize
         net.valence(),
         net.level(),
         net.links_held(),
-        net.roots().as_slice().to_vec(),
+        net.roots().to_vec(),
     )
 }
 

@@ -23,7 +23,9 @@ use alloc::string::String;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::eg::{CNet, EgSubdivision, FourierRule, PatchDomain, RuleTable};
-use capdiv::{CcCap, Error, FirstStep, Point3, PolarNetBuf, PoleJet, Real, TensorPatch};
+use capdiv::{
+    CcCap, Error, FirstStep, Point3, PolarNetBuf, PoleJet, Real, SliceStorage, TensorPatch,
+};
 
 /// What a patch is made by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -275,8 +277,8 @@ impl<R: Real> Scratch<R> {
             .max()
             .unwrap_or(0);
         Ok(Scratch {
-            polar_links: mem::filled(PolarNetBuf::<R>::link_storage_len(need), Point3::ZERO)?,
-            polar_roots: mem::filled(PolarNetBuf::<R>::root_storage_len(need), [R::ZERO; 2])?,
+            polar_links: mem::filled(SliceStorage::<R>::links_len(need), Point3::ZERO)?,
+            polar_roots: mem::filled(SliceStorage::<R>::roots_len(need), [R::ZERO; 2])?,
             links: mem::filled(3 * max_n, [R::ZERO; 3])?,
             cnet: mem::filled(6 * max_ev, [R::ZERO; 3])?,
             cc: mem::filled(CcCap::<R>::storage_len(max_ev.max(3)), Point3::ZERO)?,
@@ -291,7 +293,7 @@ impl<R: Real> Evaluator<R> {
     /// polar cap's deepest valence exceeds the largest tier,
     /// [`EvalError::OutOfMemory`] when a buffer cannot be allocated.
     pub fn new(plan: &SurfacePlan<'_>) -> Result<Self, EvalError> {
-        let need = polar_need::<R>(plan)?;
+        let need = polar_need(plan)?;
         let mut levels = mem::with_capacity(plan.steps.len() + 1)?;
         levels.push(mem::filled(plan.input_vertices, Point3::ZERO)?);
         for s in &plan.steps {
@@ -397,11 +399,11 @@ impl<R: Real> Evaluator<R> {
 }
 
 /// The largest polar net capacity the caps of `plan` need.
-pub(crate) fn polar_need<R: Real>(plan: &SurfacePlan<'_>) -> Result<usize, EvalError> {
+pub(crate) fn polar_need(plan: &SurfacePlan<'_>) -> Result<usize, EvalError> {
     let depth = plan.options.depth;
     let mut need = 0usize;
     for p in &plan.polar {
-        match PolarNetBuf::<R>::capacity_for(p.valence, depth) {
+        match capdiv::polar::capacity_for(p.valence, depth) {
             Some(x) if x <= MAX_POLAR_VALENCE => need = need.max(x),
             other => {
                 return Err(EvalError::CapacityExceeded {
@@ -503,14 +505,13 @@ impl<R: Real> Scratch<R> {
         let n_in = n >> p.prior_steps;
         let (l1, rest) = self.links.split_at(n.min(self.links.len()));
         let (l2, l3) = rest.split_at(n.min(rest.len()));
-        let mut net = PolarNetBuf::new(
+        let mut net = PolarNetBuf::new_in(
             pole,
             &[l1, l2, &l3[..n.min(l3.len())]],
-            &mut self.polar_links,
-            &mut self.polar_roots,
+            SliceStorage::new(&mut self.polar_links, &mut self.polar_roots),
         )
         .map_err(kernel)?;
-        let jet = PoleJet::of_buf(&net);
+        let jet = PoleJet::of(&net);
         let limit = jet.limit();
         let geometry = jet.geometry().ok();
         let mut rings = 0;

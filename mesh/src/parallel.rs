@@ -222,7 +222,7 @@ impl<R: Real + Send + Sync> Evaluator<R> {
         }
         self.prepare(plan, positions, apply_parallel)?;
         if self.extra.len() + 1 < threads {
-            let need = polar_need::<R>(plan)?;
+            let need = polar_need(plan)?;
             let more = threads - 1 - self.extra.len();
             mem::reserve_exact(&mut self.extra, more)?;
             while self.extra.len() + 1 < threads {

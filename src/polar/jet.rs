@@ -6,9 +6,9 @@
 //! `p4 = 3 C2`, `p5 = 3 S2`, from the configuration's own valence. Near the pole
 //! the limit surface is `p0 + p1 x + p2 y + p3 (x²+y²) + p4 (x²−y²) + p5 (2xy)`.
 
-use super::buf::PolarNetBuf;
 use super::fourier::Fourier;
-use super::net::PolarNet;
+use super::net::PolarNetInner;
+use super::storage::NetStorage;
 use crate::bezier::{SurfaceGeometry, SurfaceJet};
 use crate::error::Error;
 use crate::point::Point3;
@@ -27,35 +27,18 @@ pub struct PoleJet<R> {
 pub type PoleGeometry<R> = SurfaceGeometry<R>;
 
 impl<R: Real> PoleJet<R> {
-    /// The jet of a net at its current level.
-    pub fn of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Self {
-        Self::from_parts(
-            net.pole(),
-            net.link(1).unwrap_or(&[]),
-            net.roots().as_slice(),
-        )
+    /// The jet of a net at its current level, whatever its storage.
+    ///
+    /// The coefficients overflow only for nets with coordinates above
+    /// `MAX/(3·N)` (every coefficient is below `3·m` for coordinates below
+    /// `m`, the Fourier sums below `2·N·m`); [`Self::finite`] checks.
+    pub fn of<S: NetStorage<R>>(net: &PolarNetInner<R, S>) -> Self {
+        let v = net.view();
+        Self::from_parts(v.head.pole, v.link(1).unwrap_or(&[]), v.roots())
     }
 
-    /// The jet of a net in caller storage at its current level (the same
-    /// numbers as [`Self::of`] for the same configuration).
-    pub fn of_buf(net: &PolarNetBuf<'_, R>) -> Self {
-        Self::from_parts(net.pole(), net.link(1).unwrap_or(&[]), net.roots())
-    }
-
-    /// [`Self::of`], or [`Error::NonFinite`] when a coefficient overflows
-    /// (possible only for nets with coordinates above `MAX/(3·N)`; every
-    /// coefficient is below `3·m` for coordinates below `m`, the Fourier sums
-    /// below `2·N·m`).
-    pub fn try_of<const CAP: usize>(net: &PolarNet<R, CAP>) -> Result<Self, Error> {
-        Self::of(net).finite()
-    }
-
-    /// [`Self::of_buf`], or [`Error::NonFinite`] as [`Self::try_of`].
-    pub fn try_of_buf(net: &PolarNetBuf<'_, R>) -> Result<Self, Error> {
-        Self::of_buf(net).finite()
-    }
-
-    fn finite(self) -> Result<Self, Error> {
+    /// The jet, or [`Error::NonFinite`] when a coefficient is not finite.
+    pub fn finite(self) -> Result<Self, Error> {
         if self.p.iter().all(Point3::is_finite) {
             Ok(self)
         } else {
@@ -64,8 +47,7 @@ impl<R: Real> PoleJet<R> {
     }
 
     /// The jet from the pole, the 1-link and the roots of its valence
-    /// (`roots.len() = link1.len()`): the one implementation behind
-    /// [`Self::of`] and [`Self::of_buf`].
+    /// (`roots.len() = link1.len()`), compiled once per scalar type.
     fn from_parts(q00: Point3<R>, link1: &[Point3<R>], roots: &[[R; 2]]) -> Self {
         let f = Fourier::of(link1, roots, 1);
         let two = R::from_f64(2.0);

@@ -1,11 +1,11 @@
 //! C²PS — bi-3 C² polar subdivision (`docs/math/c2ps.md`).
 //!
-//! Data flows one way: a [`PolarNet`] (or a [`PolarNetBuf`], the same net in
-//! caller-provided storage) is built and validated once, refined in
-//! place by [`PolarNet::step`] (C²PS, §2) or [`PolarNet::rts_step`] (RTS, §3),
-//! and read out as a [`PoleJet`] (§4) or as bicubic ring patches (§5).
+//! Data flows one way: a net ([`PolarNetInner`] over any [`NetStorage`]: a
+//! [`PolarNet`] holds its storage inline, a [`PolarNetBuf`] borrows it) is
+//! built and validated once, refined in place by [`PolarNetInner::step`]
+//! (C²PS, §2) or [`PolarNetInner::rts_step`] (RTS, §3), and read out as a
+//! [`PoleJet`] (§4) or as bicubic ring patches (§5).
 
-pub mod buf;
 mod column;
 mod fourier;
 pub(crate) mod index;
@@ -15,12 +15,13 @@ pub mod outer;
 pub mod ring;
 mod rts;
 mod step;
+pub mod storage;
 pub mod stream;
 mod stream_level;
 
-pub use buf::PolarNetBuf;
 pub use jet::{PoleGeometry, PoleJet};
-pub use net::{FirstStep, PolarNet, MAX_STORED_LINKS};
+pub use net::{FirstStep, PolarNet, PolarNetBuf, PolarNetInner, MAX_STORED_LINKS};
 pub use outer::OuterRegion;
-pub use ring::{RingPatches, RingPatchesView};
+pub use ring::RingPatches;
+pub use storage::{capacity_for, ArrayStorage, NetStorage, SliceStorage};
 pub use stream::{PolarStream, StreamOptions, StreamedPatch, Sweep};

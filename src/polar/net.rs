@@ -1,18 +1,36 @@
-//! `PolarNet`: a polar configuration (docs/math/c2ps.md §1) in fixed capacity.
+//! The polar net: a polar configuration (docs/math/c2ps.md §1) refined in
+//! place, over any [`NetStorage`].
 //!
-//! The pole and links 1..5 are stored as heapless ring buffers of capacity `CAP`
-//! (points `q[i][j]`, `j` taken mod the valence). `CAP = n0·2^max_depth` fixes
-//! the deepest level reachable from valence `n0`. Beside them, the net keeps the
-//! roots of unity of its current valence ([`RootsOfUnity`], 2·CAP scalars).
+//! One type, [`PolarNetInner<R, S>`], holds the pole, the valence, the level and
+//! the number of links held; its links 1..5 (points `q[i][j]`, `j` taken mod
+//! the valence) and the roots of unity of its current valence live in the
+//! storage `S`. As `heapless` does with `VecInner` and its `Vec`/`VecView`
+//! aliases, two aliases name the usual storages:
 //!
-//! Memory: `(15 + 2)·CAP·size_of::<R>()` bytes plus a few words, e.g. 104 KiB for
-//! `PolarNet<f32, 1536>` (valence 6, depth 8).
+//! - [`PolarNet<R, CAP>`]: storage inline ([`ArrayStorage`]), capacity `CAP`
+//!   fixed at compile time — a `static`, a `Box`, the stack;
+//! - [`PolarNetBuf<'s, R>`]: storage borrowed from the caller
+//!   ([`SliceStorage`]), capacity chosen at run time.
+//!
+//! `CAP = n0·2^max_depth` fixes the deepest level reachable from valence `n0`.
+//! Memory: `17·CAP·size_of::<R>()` bytes of storage plus a few words, e.g.
+//! 104 KiB for `PolarNet<f32, 1536>` (valence 6, depth 8).
+//!
+//! Every method is written once, for any storage; its work is done by
+//! functions over the storage's two slices, compiled once per scalar type
+//! whatever the storage or the capacity (one copy of the step in flash for
+//! nets of any capacities), so every storage gives the same numbers bit for
+//! bit.
 
+use super::ring::{Ring, RingPatches};
+use super::rts::rts_step;
+use super::step::c2ps_step;
+use super::storage::{ArrayStorage, NetStorage, SliceStorage};
+use crate::bezier::BicubicPatch;
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
-use crate::trig::RootsOfUnity;
-use heapless::Vec;
+use crate::trig::roots::{check_valence, fill_ring, seed};
 
 /// Links stored by a net: 1..5, what one surface ring needs (§5).
 pub const MAX_STORED_LINKS: usize = 5;
@@ -27,19 +45,6 @@ pub enum FirstStep {
     Uniform,
     /// Rules (1)–(3) in the first step too.
     Plain,
-}
-
-/// A polar configuration of valence `n·2^level`, capacity `CAP` per link.
-#[derive(Clone, Debug)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct PolarNet<R, const CAP: usize> {
-    pub(crate) pole: Point3<R>,
-    /// Links 1..5 in slots 0..4; slots at and beyond `held` are empty.
-    pub(crate) links: [Vec<Point3<R>, CAP>; MAX_STORED_LINKS],
-    pub(crate) held: usize,
-    pub(crate) roots: RootsOfUnity<R, CAP>,
-    pub(crate) level: u32,
-    pub(crate) base_valence: usize,
 }
 
 /// Checks a level-0 configuration (used by the net and the outer region).
@@ -72,121 +77,372 @@ pub(crate) fn validate<R: Real, L: AsRef<[[R; 3]]>>(
     Ok(n)
 }
 
+/// A polar configuration of valence `n·2^level` over the storage `S`; see
+/// the [module docs](self). Use it through [`PolarNet`] (inline storage) or
+/// [`PolarNetBuf`] (borrowed storage), or over a [`NetStorage`] of your own.
+#[derive(Clone)]
+pub struct PolarNetInner<R, S> {
+    pub(crate) head: Head<R>,
+    storage: S,
+}
+
+/// A polar net with its storage inline: capacity `CAP` per link.
+pub type PolarNet<R, const CAP: usize> = PolarNetInner<R, ArrayStorage<R, CAP>>;
+
+/// A polar net in caller-provided storage (a `Vec`, a `Box<[_]>`, a
+/// `static` array…), capacity chosen at run time: see [`SliceStorage`].
+pub type PolarNetBuf<'s, R> = PolarNetInner<R, SliceStorage<'s, R>>;
+
+/// A net's state besides its storage.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Head<R> {
+    /// The polar vertex `q00`.
+    pub(crate) pole: Point3<R>,
+    /// Current valence `N` (0 for an empty net).
+    pub(crate) valence: usize,
+    /// Links held; link `k` (1-based, `k ≤ held`) is at
+    /// `[(k−1)·cap, (k−1)·cap + valence)` of the link storage.
+    pub(crate) held: usize,
+    pub(crate) level: u32,
+    pub(crate) base_valence: usize,
+}
+
+impl<R: Real> Head<R> {
+    const EMPTY: Self = Head {
+        pole: Point3([R::ZERO; 3]),
+        valence: 0,
+        held: 0,
+        level: 0,
+        base_valence: 0,
+    };
+}
+
+/// The capacity of storage with `links` points of link storage and `roots`
+/// pairs of root storage: `min(links / 5, roots)`.
+#[inline]
+pub(crate) fn capacity(links: usize, roots: usize) -> usize {
+    (links / MAX_STORED_LINKS).min(roots)
+}
+
+/// A net's head and storage as slices: what every read runs on.
+#[derive(Clone, Copy)]
+pub(crate) struct NetRef<'a, R> {
+    pub(crate) head: &'a Head<R>,
+    links: &'a [Point3<R>],
+    roots: &'a [[R; 2]],
+}
+
+impl<'a, R: Real> NetRef<'a, R> {
+    fn cap(self) -> usize {
+        capacity(self.links.len(), self.roots.len())
+    }
+
+    /// Link `i` (1-based, `1..=held`), or `None`.
+    pub(crate) fn link(self, i: usize) -> Option<&'a [Point3<R>]> {
+        link_of(self.links, self.cap(), self.head, i)
+    }
+
+    /// The roots of unity of the current valence.
+    pub(crate) fn roots(self) -> &'a [[R; 2]] {
+        self.roots.get(..self.head.valence).unwrap_or_default()
+    }
+
+    /// The current ring; [`Error::NotEnoughLinks`] below 5 links.
+    pub(crate) fn ring(self) -> Result<Ring<'a, R>, Error> {
+        let link = |k: usize| self.link(k).unwrap_or(&[]);
+        Ring::new(
+            [link(1), link(2), link(3), link(4), link(5)],
+            self.head.held,
+            self.head.valence,
+        )
+    }
+}
+
+/// Link `i` (1-based, `1..=head.held`) of link storage of capacity `cap`.
+#[inline]
+pub(crate) fn link_of<'a, R>(
+    links: &'a [Point3<R>],
+    cap: usize,
+    head: &Head<R>,
+    i: usize,
+) -> Option<&'a [Point3<R>]> {
+    if i >= 1 && i <= head.held {
+        let start = (i - 1) * cap;
+        links.get(start..start + head.valence)
+    } else {
+        None
+    }
+}
+
+/// Links 1..5 of link storage (`cap` points each), the first `count` of them
+/// cut to `len` points, the others empty.
+pub(crate) fn split_links<R>(
+    storage: &mut [Point3<R>],
+    cap: usize,
+    len: usize,
+    count: usize,
+) -> [&mut [Point3<R>]; MAX_STORED_LINKS] {
+    let mut out: [&mut [Point3<R>]; MAX_STORED_LINKS] = Default::default();
+    let mut rest = storage;
+    for (k, slot) in out.iter_mut().enumerate() {
+        let (head, tail) = rest.split_at_mut_checked(cap).unwrap_or_default();
+        rest = tail;
+        if k < count {
+            *slot = head.get_mut(..len).unwrap_or_default();
+        }
+    }
+    out
+}
+
+/// Loads a level-0 configuration into `head` and the storage; every check
+/// runs before anything is written.
+fn reset<R: Real, L: AsRef<[[R; 3]]>>(
+    head: &mut Head<R>,
+    (links_storage, roots_storage): (&mut [Point3<R>], &mut [[R; 2]]),
+    pole: [R; 3],
+    links: &[L],
+) -> Result<(), Error> {
+    let n = validate(&pole, links)?;
+    let cap = capacity(links_storage.len(), roots_storage.len());
+    check_valence(n, cap)?;
+    let base = seed(n)?;
+    // Checked: from here on nothing fails.
+    let held = links.len().min(MAX_STORED_LINKS);
+    let slots = split_links(links_storage, cap, n, held);
+    for (slot, l) in slots.into_iter().zip(links) {
+        for (dst, src) in slot.iter_mut().zip(l.as_ref()) {
+            *dst = Point3(*src);
+        }
+    }
+    fill_ring(roots_storage.get_mut(..n).unwrap_or_default(), n, base);
+    *head = Head {
+        pole: Point3(pole),
+        valence: n,
+        held,
+        level: 0,
+        base_valence: n,
+    };
+    Ok(())
+}
+
 impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
-    /// An empty net (valence 0, no links), usable in a `static`: fill it in
-    /// place with [`Self::reset`]. On an empty net [`Self::step`] returns
-    /// [`Error::NotEnoughLinks`] and [`Self::rts_step`] does nothing.
+    /// An empty net (valence 0, no links), a `const fn` usable in a `static`
+    /// (all-zero bytes: `.bss`): fill it in place with [`Self::reset`].
     pub const fn empty() -> Self {
-        PolarNet {
-            pole: Point3([R::ZERO; 3]),
-            links: [Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new()],
-            held: 0,
-            roots: RootsOfUnity::empty(),
-            level: 0,
-            base_valence: 0,
+        PolarNetInner {
+            head: Head::EMPTY,
+            storage: ArrayStorage::new(),
         }
     }
 
-    /// Builds a net from the pole and links `links[0]` = 1-link, … (each a
-    /// closed ring of `n ≥ 3` points, counter-clockwise). At least 2 links;
-    /// links beyond the 5th are checked but not stored (they only shape the
-    /// level-0 outer region, see [`crate::polar::OuterRegion`]).
+    /// [`PolarNetInner::new_in`] with inline storage. The net is returned by
+    /// value: where stack is scarce (a microcontroller), keep an
+    /// [`Self::empty`] net in a `static` and [`Self::reset`] it instead.
+    pub fn new<L: AsRef<[[R; 3]]>>(pole: [R; 3], links: &[L]) -> Result<Self, Error> {
+        Self::new_in(pole, links, ArrayStorage::new())
+    }
+
+    /// [`PolarNetInner::from_flat_in`] with inline storage.
+    pub fn from_flat(pole: [R; 3], valence: usize, coords: &[R]) -> Result<Self, Error> {
+        Self::from_flat_in(pole, valence, coords, ArrayStorage::new())
+    }
+}
+
+impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
+    /// An empty net (valence 0, no links) over `storage`: fill it with
+    /// [`Self::reset`]. Nothing is written to the storage. On an empty net
+    /// [`Self::step`] returns [`Error::NotEnoughLinks`] and [`Self::rts_step`]
+    /// does nothing.
+    pub fn empty_in(storage: S) -> Self {
+        PolarNetInner {
+            head: Head::EMPTY,
+            storage,
+        }
+    }
+
+    /// Builds a net in `storage` from the pole and links `links[0]` = 1-link,
+    /// … (each a closed ring of `n ≥ 3` points, counter-clockwise). At least
+    /// 2 links; links beyond the 5th are checked but not stored (they only
+    /// shape the level-0 outer region, see [`crate::polar::OuterRegion`]).
     ///
     /// Errors, in this order of checking: [`Error::TooFewLinks`],
     /// [`Error::ValenceTooSmall`], [`Error::LinkLengthMismatch`],
-    /// [`Error::NonFinite`], [`Error::CapacityExceeded`] (`n > CAP`),
-    /// [`Error::ValenceUnsupported`] (odd part of `n` above
-    /// [`crate::trig::MAX_ODD_PART`]).
-    ///
-    /// The net is returned by value: where stack is scarce (a microcontroller),
-    /// keep an [`Self::empty`] net in a `static` and [`Self::reset`] it instead.
-    pub fn new<L: AsRef<[[R; 3]]>>(pole: [R; 3], links: &[L]) -> Result<Self, Error> {
-        let mut net = Self::empty();
+    /// [`Error::NonFinite`], [`Error::CapacityExceeded`] (`n` above
+    /// [`Self::capacity`]), [`Error::ValenceUnsupported`] (odd part of `n`
+    /// above [`crate::trig::MAX_ODD_PART`]). On error nothing has been written
+    /// to the storage.
+    pub fn new_in<L: AsRef<[[R; 3]]>>(
+        pole: [R; 3],
+        links: &[L],
+        storage: S,
+    ) -> Result<Self, Error> {
+        let mut net = Self::empty_in(storage);
         net.reset(pole, links)?;
         Ok(net)
     }
 
-    /// [`Self::new`] in place: loads a level-0 configuration into this net,
-    /// whatever it held. Every check runs before anything is written, so on
-    /// error the net is unchanged. Stack use is a few words, whatever `CAP` is.
-    pub fn reset<L: AsRef<[[R; 3]]>>(&mut self, pole: [R; 3], links: &[L]) -> Result<(), Error> {
-        let n = validate(&pole, links)?;
-        // The first write: `RootsOfUnity::reset` checks `n` (capacity, table
-        // support) before touching anything, so an error leaves the net as it was.
-        self.roots.reset(n)?;
-        for (k, slot) in self.links.iter_mut().enumerate() {
-            slot.clear();
-            if let Some(l) = links.get(k) {
-                for p in l.as_ref() {
-                    // Cannot fail: n <= CAP was checked above.
-                    slot.push(Point3(*p)).map_err(|_| Error::CapacityExceeded {
-                        needed: n,
-                        capacity: CAP,
-                    })?;
-                }
-            }
-        }
-        self.pole = Point3(pole);
-        self.held = links.len().min(MAX_STORED_LINKS);
-        self.level = 0;
-        self.base_valence = n;
-        Ok(())
-    }
-
-    /// Builds a net from flat coordinates: `coords` holds `links·valence` points
-    /// as `x, y, z` triples, link by link (the layout of the C ABI).
-    pub fn from_flat(pole: [R; 3], valence: usize, coords: &[R]) -> Result<Self, Error> {
-        let mut net = Self::empty();
+    /// Builds a net in `storage` from flat coordinates: `coords` holds
+    /// `links·valence` points as `x, y, z` triples, link by link (the layout
+    /// of the C ABI). Errors as [`Self::new_in`], with
+    /// [`Error::WrongLength`] for a length not a multiple of `3·valence`.
+    pub fn from_flat_in(
+        pole: [R; 3],
+        valence: usize,
+        coords: &[R],
+        storage: S,
+    ) -> Result<Self, Error> {
+        let mut net = Self::empty_in(storage);
         net.reset_flat(pole, valence, coords)?;
         Ok(net)
     }
 
-    /// [`Self::from_flat`] in place; on error the net is unchanged.
+    /// [`Self::new_in`] in place: loads a level-0 configuration, whatever the
+    /// net held. Every check runs before anything is written, so on error
+    /// the net and its storage are unchanged. Stack use is a few words,
+    /// whatever the capacity.
+    pub fn reset<L: AsRef<[[R; 3]]>>(&mut self, pole: [R; 3], links: &[L]) -> Result<(), Error> {
+        reset(&mut self.head, self.storage.parts_mut(), pole, links)
+    }
+
+    /// [`Self::from_flat_in`] in place; on error the net is unchanged.
     pub fn reset_flat(&mut self, pole: [R; 3], valence: usize, coords: &[R]) -> Result<(), Error> {
         let (links, stored) = flat_links(valence, coords)?;
         self.reset(pole, links.get(..stored).unwrap_or(&[]))
     }
 
+    /// Gives the storage back.
+    pub fn into_storage(self) -> S {
+        self.storage
+    }
+
+    #[inline]
+    pub(crate) fn view(&self) -> NetRef<'_, R> {
+        let (links, roots) = self.storage.parts();
+        NetRef {
+            head: &self.head,
+            links,
+            roots,
+        }
+    }
+
+    /// The largest valence the storage has room for:
+    /// `min(link storage / 5, root storage)` (`CAP` for a [`PolarNet`]).
+    #[inline]
+    pub fn capacity(&self) -> usize {
+        let (links, roots) = self.storage.parts();
+        capacity(links.len(), roots.len())
+    }
     /// Current valence `N = n·2^level`.
     #[inline]
     pub fn valence(&self) -> usize {
-        self.roots.len()
+        self.head.valence
     }
     /// Valence of the level-0 configuration.
     #[inline]
     pub fn base_valence(&self) -> usize {
-        self.base_valence
+        self.head.base_valence
     }
     /// Number of C²PS steps applied.
     #[inline]
     pub fn level(&self) -> u32 {
-        self.level
+        self.head.level
     }
     /// The polar vertex `q00`.
     #[inline]
     pub fn pole(&self) -> Point3<R> {
-        self.pole
+        self.head.pole
     }
     /// Number of links held (2..=5).
     #[inline]
     pub fn links_held(&self) -> usize {
-        self.held
+        self.head.held
     }
     /// Link `i` (1-based, `1..=links_held()`), or `None`.
     #[inline]
     pub fn link(&self, i: usize) -> Option<&[Point3<R>]> {
-        if i >= 1 && i <= self.held {
-            // held <= MAX_STORED_LINKS: `get` never fails, but spares the
-            // bounds-check panic path the optimiser cannot remove.
-            self.links.get(i - 1).map(|l| l.as_slice())
-        } else {
-            None
-        }
+        self.view().link(i)
     }
-    /// The roots of unity of the current valence.
+    /// The roots of unity of the current valence, `[c(j/N), s(j/N)]` for
+    /// `j < N`.
     #[inline]
-    pub fn roots(&self) -> &RootsOfUnity<R, CAP> {
-        &self.roots
+    pub fn roots(&self) -> &[[R; 2]] {
+        self.view().roots()
+    }
+
+    /// One C²PS step (§2). `first` selects the first-step variant; it only
+    /// matters on the net's first step (level 0), later steps always use
+    /// rules (1)–(3).
+    ///
+    /// [`Error::CapacityExceeded`] when `2N` is above [`Self::capacity`],
+    /// [`Error::NotEnoughLinks`] on an [`Self::empty_in`] net,
+    /// [`Error::NonFinite`] when a coordinate of the pole or links 1..3
+    /// exceeds `MAX/(16·N)` in magnitude (the step could overflow); the net
+    /// is then unchanged.
+    #[inline]
+    pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
+        c2ps_step(&mut self.head, self.storage.parts_mut(), first)
+    }
+
+    /// One RTS step (§3). Valence and level are unchanged; the links held grow
+    /// as for C²PS (old links up to `K` give new links up to `2K−1`, at most
+    /// 5).
+    ///
+    /// [`Error::NonFinite`] when a coordinate of the pole or links 1..3
+    /// exceeds `MAX/(16·N)` in magnitude (as for [`Self::step`]); the net is
+    /// then unchanged. On an empty net: `Ok`, nothing done.
+    #[inline]
+    pub fn rts_step(&mut self) -> Result<(), Error> {
+        rts_step(&mut self.head, self.storage.parts_mut())
+    }
+
+    /// Number of patches in the current ring, `2N`.
+    #[inline]
+    pub fn ring_len(&self) -> usize {
+        2 * self.head.valence
+    }
+
+    /// Patch `(span, column)` of the current ring (§5), `span ∈ {0, 1}`,
+    /// `column < N`. Needs all 5 links ([`Error::NotEnoughLinks`]);
+    /// [`Error::OutOfDomain`] for an index outside the ring.
+    #[inline]
+    pub fn ring_patch(&self, span: usize, column: usize) -> Result<BicubicPatch<R>, Error> {
+        self.view().ring()?.patch(span, column)
+    }
+
+    /// All `2N` patches of the current ring: span 0 (columns 0..N), then
+    /// span 1. [`Error::NotEnoughLinks`] below 5 links.
+    #[inline]
+    pub fn ring_patches(&self) -> Result<RingPatches<'_, R>, Error> {
+        Ok(self.view().ring()?.patches())
+    }
+}
+
+impl<R: Real, S> core::fmt::Debug for PolarNetInner<R, S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        let h = &self.head;
+        f.debug_struct("PolarNet")
+            .field("pole", &h.pole)
+            .field("valence", &h.valence)
+            .field("level", &h.level)
+            .field("links_held", &h.held)
+            .field("base_valence", &h.base_valence)
+            .finish_non_exhaustive()
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<R: Real + defmt::Format, S> defmt::Format for PolarNetInner<R, S> {
+    fn format(&self, f: defmt::Formatter) {
+        let h = &self.head;
+        defmt::write!(
+            f,
+            "PolarNet {{ pole: {}, valence: {}, level: {}, links_held: {}, base_valence: {} }}",
+            h.pole,
+            h.valence,
+            h.level,
+            h.held,
+            h.base_valence
+        )
     }
 }
 

@@ -9,47 +9,13 @@
 //! its `v` counter-clockwise.
 
 use super::index::at;
-use super::net::PolarNet;
 use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
-use core::marker::PhantomData;
-
-impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
-    /// Number of patches in the current ring, `2N`.
-    #[inline]
-    pub fn ring_len(&self) -> usize {
-        2 * self.valence()
-    }
-
-    /// Patch `(span, column)` of the current ring, `span ∈ {0, 1}`,
-    /// `column < N`. Needs all 5 links ([`Error::NotEnoughLinks`]);
-    /// [`Error::OutOfDomain`] for an index outside the ring.
-    pub fn ring_patch(&self, span: usize, column: usize) -> Result<BicubicPatch<R>, Error> {
-        self.ring()?.patch(span, column)
-    }
-
-    /// All `2N` patches of the current ring: span 0 (columns 0..N), then span 1.
-    pub fn ring_patches(&self) -> Result<RingPatches<'_, R, CAP>, Error> {
-        Ok(RingPatches {
-            inner: self.ring()?.patches(),
-            _net: PhantomData,
-        })
-    }
-
-    fn ring(&self) -> Result<Ring<'_, R>, Error> {
-        Ring::new(
-            self.links.each_ref().map(|l| l.as_slice()),
-            self.held,
-            self.valence(),
-        )
-    }
-}
 
 /// The current ring of a net over plain slices: links 1..5 and the valence.
-/// The patch construction exists once per scalar type, shared by
-/// [`PolarNet`] and [`super::PolarNetBuf`].
+/// The patch construction exists once per scalar type, whatever the storage.
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Ring<'a, R> {
@@ -90,46 +56,24 @@ impl<'a, R: Real> Ring<'a, R> {
     }
 
     /// An iterator over all `2N` patches.
-    pub(crate) fn patches(self) -> RingPatchesView<'a, R> {
-        RingPatchesView {
+    pub(crate) fn patches(self) -> RingPatches<'a, R> {
+        RingPatches {
             ring: self,
             next: 0,
         }
     }
 }
 
-/// Iterator over the patches of one ring of a [`PolarNet`].
+/// Iterator over the patches of one ring:
+/// [`PolarNetInner::ring_patches`](super::PolarNetInner::ring_patches).
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RingPatches<'a, R, const CAP: usize> {
-    inner: RingPatchesView<'a, R>,
-    _net: PhantomData<&'a PolarNet<R, CAP>>,
-}
-
-impl<R: Real, const CAP: usize> Iterator for RingPatches<'_, R, CAP> {
-    type Item = BicubicPatch<R>;
-    #[inline]
-    fn next(&mut self) -> Option<Self::Item> {
-        self.inner.next()
-    }
-    #[inline]
-    fn size_hint(&self) -> (usize, Option<usize>) {
-        self.inner.size_hint()
-    }
-}
-
-impl<R: Real, const CAP: usize> ExactSizeIterator for RingPatches<'_, R, CAP> {}
-
-/// Iterator over the patches of one ring, capacity-erased: what
-/// [`super::PolarNetBuf::ring_patches`] returns, and what [`RingPatches`] wraps.
-#[derive(Clone, Debug)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct RingPatchesView<'a, R> {
+pub struct RingPatches<'a, R> {
     ring: Ring<'a, R>,
     next: usize,
 }
 
-impl<R: Real> Iterator for RingPatchesView<'_, R> {
+impl<R: Real> Iterator for RingPatches<'_, R> {
     type Item = BicubicPatch<R>;
     fn next(&mut self) -> Option<Self::Item> {
         let n = self.ring.n;
@@ -148,4 +92,4 @@ impl<R: Real> Iterator for RingPatchesView<'_, R> {
     }
 }
 
-impl<R: Real> ExactSizeIterator for RingPatchesView<'_, R> {}
+impl<R: Real> ExactSizeIterator for RingPatches<'_, R> {}

@@ -3,52 +3,44 @@
 
 use super::fourier::Fourier;
 use super::index::{add_mod, at, put};
-use super::net::{held_after_step, PolarNet};
+use super::net::{capacity, held_after_step, link_of, split_links, Head};
 use super::step::step_fits;
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
 
-impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
-    /// One RTS step. Valence and level are unchanged; the links held grow as
-    /// for C²PS (old links up to `K` give new links up to `2K−1`, at most 5).
-    ///
-    /// [`Error::NonFinite`] when a coordinate of the pole or links 1..3
-    /// exceeds `MAX/(16·N)` in magnitude (the step could overflow, as for
-    /// [`Self::step`]); the net is then unchanged. On an [`Self::empty`] net:
-    /// `Ok`, nothing done.
-    pub fn rts_step(&mut self) -> Result<(), Error> {
-        if self.held < 2 {
-            return Ok(()); // an empty net: nothing to refine
-        }
-        step_fits(
-            self.pole,
-            [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])),
-            self.valence(),
-        )?;
-        let new_held = held_after_step(self.held);
-        let n = self.valence();
-        for l in self.links.iter_mut().take(new_held) {
-            // Cannot fail: n <= CAP already holds for link 1.
-            let _ = l.resize(n, Point3::ZERO);
-        }
-        rts_in_place(
-            &mut self.pole,
-            self.links.each_mut().map(|l| l.as_mut_slice()),
-            n,
-            self.held,
-            self.roots.as_slice(),
-        );
-        self.held = new_held;
-        Ok(())
+/// One RTS step of a net (`PolarNetInner::rts_step`), over its storage's
+/// slices: compiled once per scalar type, whatever the storage.
+pub(crate) fn rts_step<R: Real>(
+    head: &mut Head<R>,
+    (links, roots): (&mut [Point3<R>], &mut [[R; 2]]),
+) -> Result<(), Error> {
+    if head.held < 2 {
+        return Ok(()); // an empty net: nothing to refine
     }
+    let n = head.valence;
+    let cap = capacity(links.len(), roots.len());
+    step_fits(
+        head.pole,
+        [1, 2, 3].map(|i| link_of(links, cap, head, i).unwrap_or(&[])),
+        n,
+    )?;
+    let new_held = held_after_step(head.held);
+    rts_in_place(
+        &mut head.pole,
+        split_links(links, cap, n, new_held),
+        n,
+        head.held,
+        roots.get(..n).unwrap_or_default(),
+    );
+    head.held = new_held;
+    Ok(())
 }
 
-/// The step over plain slices (compiled once per scalar type, shared by
-/// [`PolarNet`] and [`super::PolarNetBuf`]). On entry `links[k][..n]` holds
+/// The step over plain slices. On entry `links[k][..n]` holds
 /// link `k+1` for `k < held`, and every link that will be written
 /// (`k < 2·held − 1`, at most 5) has room for `n` points (more is left alone).
-pub(crate) fn rts_in_place<R: Real>(
+fn rts_in_place<R: Real>(
     pole: &mut Point3<R>,
     links: [&mut [Point3<R>]; 5],
     n: usize,

@@ -11,42 +11,44 @@
 use super::column::{column, refine_even, refine_odd};
 use super::fourier::Fourier;
 use super::index::{add_mod, at, next_mod, put};
-use super::net::{held_after_step, FirstStep, PolarNet};
+use super::net::{capacity, held_after_step, link_of, split_links, FirstStep, Head};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
+use crate::trig::roots::double_ring;
 
-impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
-    /// One C²PS step. `first` selects the first-step variant; it only matters
-    /// on the net's first step (level 0), later steps always use rules (1)–(3).
-    ///
-    /// [`Error::CapacityExceeded`] when `2N > CAP`, [`Error::NotEnoughLinks`]
-    /// on an [`PolarNet::empty`] net, [`Error::NonFinite`] when a coordinate
-    /// of the pole or links 1..3 exceeds `MAX/(16·N)` in magnitude (the step
-    /// could overflow, see `step_fits`); the net is then unchanged.
-    pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
-        let n = self.valence();
-        check_step(self.held, n, CAP)?;
-        step_fits(self.pole, [1, 2, 3].map(|i| self.link(i).unwrap_or(&[])), n)?;
-        self.roots.double()?;
-        let new_held = held_after_step(self.held);
-        for l in self.links.iter_mut().take(new_held) {
-            // Cannot fail: 2n <= CAP was checked above.
-            let _ = l.resize(2 * n, Point3::ZERO);
-        }
-        c2ps_in_place(
-            &mut self.pole,
-            self.links.each_mut().map(|l| l.as_mut_slice()),
-            n,
-            self.held,
-            new_held,
-            self.roots.as_slice(),
-            self.level == 0 && first == FirstStep::Uniform,
-        );
-        self.held = new_held;
-        self.level += 1;
-        Ok(())
-    }
+/// One C²PS step of a net (`PolarNetInner::step`), over its storage's
+/// slices: compiled once per scalar type, whatever the storage.
+pub(crate) fn c2ps_step<R: Real>(
+    head: &mut Head<R>,
+    (links, roots): (&mut [Point3<R>], &mut [[R; 2]]),
+    first: FirstStep,
+) -> Result<(), Error> {
+    let n = head.valence;
+    let cap = capacity(links.len(), roots.len());
+    // 2n <= cap <= root storage: the roots double in place.
+    check_step(head.held, n, cap)?;
+    step_fits(
+        head.pole,
+        [1, 2, 3].map(|i| link_of(links, cap, head, i).unwrap_or(&[])),
+        n,
+    )?;
+    let roots = roots.get_mut(..2 * n).unwrap_or_default();
+    double_ring(roots, n);
+    let new_held = held_after_step(head.held);
+    c2ps_in_place(
+        &mut head.pole,
+        split_links(links, cap, 2 * n, new_held),
+        n,
+        head.held,
+        new_held,
+        roots,
+        head.level == 0 && first == FirstStep::Uniform,
+    );
+    head.valence = 2 * n;
+    head.held = new_held;
+    head.level += 1;
+    Ok(())
 }
 
 /// The errors of a C²PS step from valence `n` with `held` links in room for
@@ -109,8 +111,7 @@ fn refine<R: Real>(prev: Point3<R>, cur: Point3<R>, next: Point3<R>) -> (Point3<
     (refine_even(prev, cur, next), refine_odd(cur, next))
 }
 
-/// The step over plain slices (compiled once per scalar type, shared by
-/// [`PolarNet`] and [`super::PolarNetBuf`]). `n` is the old valence: on entry
+/// The step over plain slices. `n` is the old valence: on entry
 /// `links[k][..n]` holds link `k+1` for `k < held`, and every link that will be
 /// written (`k < new_held`) has room for `2n` points (more is left alone);
 /// `roots` are already the `2n`-th roots.

@@ -38,7 +38,7 @@ use crate::real::Real;
 use crate::trig::primitive_root;
 
 #[cfg(doc)]
-use super::net::PolarNet;
+use super::net::{PolarNet, PolarNetInner};
 
 /// What a sweep computes and which of its patches it delivers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,7 @@ pub struct StreamOptions {
     /// Deepest level `M` (C²PS steps from the input), `≤ D` of
     /// [`PolarStream<R, D>`].
     pub depth: u32,
-    /// The first-step variant (§2), as for [`PolarNet::step`].
+    /// The first-step variant (§2), as for [`PolarNetInner::step`].
     pub first: FirstStep,
     /// Deliver only levels `≥ from_level` (the levels below are computed, not
     /// turned into patches). Default 0.
@@ -73,7 +73,7 @@ impl StreamOptions {
     }
 
     /// Only the ring of level `level`, span `span` (`None`: both) — e.g. to
-    /// write patches in [`PolarNet::ring_patches`]' order, one sweep per
+    /// write patches in [`PolarNetInner::ring_patches`]' order, one sweep per
     /// level and span.
     pub const fn only(self, level: u32, span: Option<u8>) -> Self {
         StreamOptions {
@@ -84,7 +84,7 @@ impl StreamOptions {
     }
 }
 
-/// One patch delivered by a sweep: [`PolarNet::ring_patch`]`(span, column)`
+/// One patch delivered by a sweep: [`PolarNetInner::ring_patch`]`(span, column)`
 /// of level `level` (its `u` runs outward over `r ∈ [2+span, 3+span]` in
 /// level-`level` link units, its `v` counter-clockwise over
 /// `τ ∈ [column/N, (column+1)/N]`).
@@ -104,7 +104,7 @@ pub struct StreamedPatch<R> {
 }
 
 impl<R> StreamedPatch<R> {
-    /// Its position in [`PolarNet::ring_patches`] of its level:
+    /// Its position in [`PolarNetInner::ring_patches`] of its level:
     /// `span·N + column`.
     #[inline]
     pub fn ring_index(&self) -> usize {
@@ -364,7 +364,7 @@ fn jet_of<R: Real>(f: &Sums<R>) -> PoleJet<R> {
 /// A running sweep: an iterator over the ring patches of levels
 /// `from_level..=depth` (levels whose configuration holds links 1..5 only:
 /// from level 0 with 5 or more input links, level 1 with 3 or 4, level 2
-/// with 2 — docs/math/c2ps.md §2, as [`PolarNet::ring_patches`]).
+/// with 2 — docs/math/c2ps.md §2, as [`PolarNetInner::ring_patches`]).
 ///
 /// **Order.** The sweep pulls columns through the levels depth-first. Within
 /// a level, patches arrive by increasing column `j = 0..N−1`, both spans of a

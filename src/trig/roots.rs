@@ -8,8 +8,8 @@
 //! scalars.
 //!
 //! The ring algorithms (`fill_ring`, `double_ring`) work on plain slices, once
-//! per scalar type; [`RootsOfUnity`] and [`crate::polar::PolarNetBuf`] (roots in
-//! caller storage) both call them.
+//! per scalar type; [`RootsOfUnity`] and the polar net (roots in its
+//! [`crate::polar::NetStorage`]) both call them.
 
 use super::table::MAX_ODD_PART;
 use crate::error::Error;
@@ -100,8 +100,8 @@ impl<R: Real, const CAP: usize> RootsOfUnity<R, CAP> {
 }
 
 // The ring algorithms below work on plain slices and are shared by every
-// capacity: `RootsOfUnity<R, CAP>` (a heapless `Vec`) and
-// `crate::polar::PolarNetBuf` (caller storage) both call them.
+// capacity: `RootsOfUnity<R, CAP>` (a heapless `Vec`) and the polar net
+// (any storage) both call them.
 
 /// The errors of building the ring of valence `n` in room for `cap` roots, in
 /// the order checked: [`Error::ValenceTooSmall`], [`Error::CapacityExceeded`],

@@ -87,7 +87,7 @@ impl<R: Scalar> Job<'_, R> {
         let net = storage
             .net(self.config.pole, &self.config.links)
             .map_err(kernel)?;
-        let jet = PoleJet::of_buf(&net);
+        let jet = PoleJet::of(&net);
         let geometry = jet.geometry().map_err(kernel)?;
         Ok(PoleOutput::new(&jet, &geometry))
     }
