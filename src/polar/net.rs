@@ -210,8 +210,12 @@ fn reset<R: Real, L: AsRef<[[R; 3]]>>(
     let held = links.len().min(MAX_STORED_LINKS);
     let slots = split_links(links_storage, cap, n, held);
     for (slot, l) in slots.into_iter().zip(links) {
-        for (dst, src) in slot.iter_mut().zip(l.as_ref()) {
-            *dst = Point3(*src);
+        for (dst, &[x, y, z]) in slot.iter_mut().zip(l.as_ref()) {
+            // Coordinate by coordinate: a whole-point copy here became a
+            // call to a 1.5 KiB `memmove` per point on Cortex-M.
+            dst.0[0] = x;
+            dst.0[1] = y;
+            dst.0[2] = z;
         }
     }
     fill_ring(roots_storage.get_mut(..n).unwrap_or_default(), n, base);
