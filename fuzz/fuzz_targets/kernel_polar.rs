@@ -6,7 +6,7 @@
 //! agree bit for bit while they have taken the same successful operations
 //! (the kernel's promise: one code path); an `Ok` step or RTS step is finite
 //! (the kernel documents `NonFinite` when a step could overflow); an `Ok`
-//! jet (`try_of`) and `PoleGeometry` are finite; for inputs whose
+//! jet (`PoleJet::finite`) and `PoleGeometry` are finite; for inputs whose
 //! coordinates are at most MAX/2^40, every ring patch and jet is finite.
 #![no_main]
 
@@ -324,7 +324,7 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
                 }
                 check_jet(&jn, net_small(&net));
                 check_jet(&jb, buf_small(&buf));
-                // try_of: Ok only when finite, and then the same jet.
+                // PoleJet::finite: Ok only when finite, and then the same jet.
                 match PoleJet::of(&net).finite() {
                     Ok(j) => assert_eq!(jet_bits(&j), jet_bits(&jn)),
                     Err(_) => assert!(!all_finite(jn.p)),
