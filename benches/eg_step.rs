@@ -34,7 +34,7 @@ fn cnet<R: Real>(n: usize) -> CNet<R> {
 }
 
 fn bench_valence<R: Real>(c: &mut Criterion, prec: &str, n: usize) {
-    let start = EgSubdivision::from_cnet(&cnet::<R>(n)).expect("supported valence");
+    let start = EgSubdivision::new(&cnet::<R>(n), None).expect("supported valence");
     let mut stepped = start.clone();
     stepped.step().expect("step");
 

@@ -99,7 +99,7 @@ impl<R: SkReal> Case<R> {
         let center = c.map(R::from_f64);
         let nodes: Vec<[R; 3]> = nodes.iter().map(|p| p.map(R::from_f64)).collect();
         let net = CNet::new(center, &nodes).expect("valid c-net");
-        let eg = EgSubdivision::from_cnet(&net).expect("built-in rule");
+        let eg = EgSubdivision::new(&net, None).expect("built-in rule");
         let fourier = FourierRule::new(eg.table().expect("EG table")).expect("rule");
         let positions: Vec<[R; 3]> = std::iter::once(center)
             .chain(nodes.iter().copied())

@@ -81,7 +81,7 @@ fn cnet_errors() {
     far.iter_mut().for_each(|p| p[0] = 1.5e308);
     let c = CNet::new([-1.5e308, 0.0, 0.0], &far).unwrap();
     assert!(!c.to_dnet().is_finite());
-    assert_eq!(EgSubdivision::from_cnet(&c).unwrap_err(), Error::NonFinite);
+    assert_eq!(EgSubdivision::new(&c, None).unwrap_err(), Error::NonFinite);
     // n = 4 cap only for n = 4.
     let c5 = CNet::new(e, &nodes).unwrap();
     assert_eq!(
@@ -144,7 +144,7 @@ fn valences_without_rules_are_unsupported() {
     for n in 6..=10 {
         let d = DNet::new(&vec![[0.25f64, 0.5, 1.0]; 12 * n], None).unwrap();
         assert_eq!(
-            EgSubdivision::new(d.clone()).unwrap_err(),
+            EgSubdivision::new(&d, None).unwrap_err(),
             Error::ValenceUnsupported { valence: n }
         );
         assert_eq!(
@@ -154,7 +154,7 @@ fn valences_without_rules_are_unsupported() {
         assert!(RuleTable::builtin(n).is_none());
     }
     assert!(RuleTable::builtin(4).is_none());
-    assert!(EgSubdivision::new(DNet::new(&vec![[0.0f64; 3]; 48], None).unwrap()).is_ok());
+    assert!(EgSubdivision::new(&DNet::new(&vec![[0.0f64; 3]; 48], None).unwrap(), None).is_ok());
 }
 
 #[test]
@@ -162,7 +162,7 @@ fn step_overflow_leaves_state_untouched() {
     // Finite nodes 1.5e308 with c0 = −1.5e308: d − c0 overflows to ∞.
     let nodes = vec![[1.5e308f64, 0.0, 1.0]; 36];
     let d = DNet::new(&nodes, Some([-1.5e308, 0.0, 1.0])).unwrap();
-    let mut sub = EgSubdivision::new(d.clone()).unwrap();
+    let mut sub = EgSubdivision::new(&d, None).unwrap();
     let before = sub.net().clone();
     assert_eq!(sub.step().unwrap_err(), Error::NonFinite);
     assert_eq!(sub.net(), &before);
@@ -174,7 +174,7 @@ fn step_overflow_leaves_state_untouched() {
 #[test]
 fn ring_index_errors() {
     let (e, nodes) = cnet_nodes(5);
-    let mut sub = EgSubdivision::from_cnet(&CNet::new(e, &nodes).unwrap()).unwrap();
+    let mut sub = EgSubdivision::new(&CNet::new(e, &nodes).unwrap(), None).unwrap();
     assert_eq!(sub.ring_patch(0).unwrap_err(), Error::OutOfDomain);
     assert_eq!(sub.ring_patch_domain(0).unwrap_err(), Error::OutOfDomain);
     assert_eq!(sub.ring_patches().count(), 0);
@@ -332,7 +332,7 @@ fn table_valence_must_match_net() {
     let d = DNet::new(&vec![[0.0f64; 3]; 60], None).unwrap();
     let t3 = RuleTable::builtin(3).unwrap();
     assert_eq!(
-        EgSubdivision::with_table(d.clone(), t3).unwrap_err(),
+        EgSubdivision::new(&d, Some(t3)).unwrap_err(),
         Error::TableShape
     );
     assert_eq!(d.refined(Some(&t3)).unwrap_err(), Error::TableShape);

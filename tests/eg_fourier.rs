@@ -30,8 +30,8 @@ fn fourier_steps_follow_the_dense_steps() {
     for n in [3usize, 5] {
         for _ in 0..if cfg!(miri) { 1 } else { 10 } {
             let net = dnet(n, 10.0, &mut seed);
-            let mut dense = EgSubdivision::new(net.clone()).unwrap();
-            let mut fast = EgSubdivision::new(net).unwrap();
+            let mut dense = EgSubdivision::new(&net, None).unwrap();
+            let mut fast = EgSubdivision::new(&net, None).unwrap();
             let rule = FourierRule::new(fast.table().unwrap()).unwrap();
             assert_eq!(rule.valence(), n);
             for _ in 0..if cfg!(miri) { 2 } else { 10 } {
@@ -61,7 +61,7 @@ fn wrong_valence_is_refused_and_nothing_changes() {
     let mut seed = 7u64;
     let rule5 = FourierRule::new(&RuleTable::builtin(5).unwrap()).unwrap();
     for n in [3usize, 4] {
-        let mut sub = EgSubdivision::new(dnet(n, 1.0, &mut seed)).unwrap();
+        let mut sub = EgSubdivision::new(&dnet(n, 1.0, &mut seed), None).unwrap();
         let before = sub.clone();
         assert_eq!(sub.step_fourier(&rule5), Err(Error::TableShape));
         assert_eq!(sub.net(), before.net());
@@ -85,8 +85,8 @@ fn huge_nets_take_the_dense_path() {
     for _ in 0..if cfg!(miri) { 1 } else { 10 } {
         for scale in [f64::MAX / 512.0, f64::MAX / 4.0, f64::MAX * 0.9] {
             let net = dnet(5, scale, &mut seed);
-            let mut dense = EgSubdivision::new(net.clone()).unwrap();
-            let mut fast = EgSubdivision::new(net).unwrap();
+            let mut dense = EgSubdivision::new(&net, None).unwrap();
+            let mut fast = EgSubdivision::new(&net, None).unwrap();
             let rule = FourierRule::new(fast.table().unwrap()).unwrap();
             let before = fast.clone();
             let (a, b) = (dense.step(), fast.step_fourier(&rule));

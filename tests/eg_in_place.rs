@@ -68,10 +68,13 @@ fn empty_values_are_empty_and_refuse_to_step() {
     assert_eq!(sub.ring_patch(0).unwrap_err(), Error::OutOfDomain);
     // An empty c-net or d-net cannot start a subdivision.
     assert_eq!(
-        sub.reset_from_cnet(&c),
+        sub.reset(&c, None),
         Err(Error::ValenceTooSmall { valence: 0 })
     );
-    assert_eq!(sub.reset(&d), Err(Error::ValenceTooSmall { valence: 0 }));
+    assert_eq!(
+        sub.reset(&d, None),
+        Err(Error::ValenceTooSmall { valence: 0 })
+    );
     assert_eq!(sub.level(), 0);
     // `empty` is a const fn: usable to initialise a static.
     static EMPTY: EgSubdivision<'static, f32> = EgSubdivision::empty();
@@ -133,12 +136,12 @@ fn reset_equals_new_and_steps_equal_the_refined_chain() {
     };
     for &(n, seed, steps) in nets {
         let c = cnet(n, seed);
-        sub.reset_from_cnet(&c).unwrap();
-        let mut fresh = EgSubdivision::from_cnet(&c).unwrap();
+        sub.reset(&c, None).unwrap();
+        let mut fresh = EgSubdivision::new(&c, None).unwrap();
         assert_eq!(state(&sub), state(&fresh));
         // The same from the raised d-net, with `reset`.
         let mut again = EgSubdivision::empty();
-        again.reset(&c.to_dnet()).unwrap();
+        again.reset(&c.to_dnet(), None).unwrap();
         assert_eq!(state(&again), state(&fresh));
 
         // Each step's net and predecessor are the out-of-place refinements
@@ -159,7 +162,7 @@ fn reset_equals_new_and_steps_equal_the_refined_chain() {
 }
 
 #[test]
-fn reset_with_table_equals_with_table() {
+fn reset_with_a_table_equals_new_with_the_table() {
     // Under Miri the built-in table: RuleTable::new's spectral check runs 96
     // EG steps (minutes there).
     let table = if cfg!(miri) {
@@ -169,10 +172,10 @@ fn reset_with_table_equals_with_table() {
     };
     let c = cnet(5, 21);
     let mut a = EgSubdivision::empty();
-    a.reset_from_cnet_with_table(&c, table).unwrap();
-    let mut b = EgSubdivision::with_table(c.to_dnet(), table).unwrap();
+    a.reset(&c, Some(table)).unwrap();
+    let mut b = EgSubdivision::new(&c.to_dnet(), Some(table)).unwrap();
     let mut d = EgSubdivision::empty();
-    d.reset_with_table(&c.to_dnet(), table).unwrap();
+    d.reset(&c.to_dnet(), Some(table)).unwrap();
     for _ in 0..if cfg!(miri) { 1 } else { 3 } {
         a.step().unwrap();
         b.step().unwrap();
@@ -185,7 +188,7 @@ fn reset_with_table_equals_with_table() {
 #[test]
 fn bad_input_leaves_everything_unchanged() {
     let c5 = cnet(5, 31);
-    let mut sub = EgSubdivision::from_cnet(&c5).unwrap();
+    let mut sub = EgSubdivision::new(&c5, None).unwrap();
     // Under Miri (an EG step takes seconds there) no step before the errors.
     let pre = if cfg!(miri) { 0 } else { 2 };
     for _ in 0..pre {
@@ -199,31 +202,25 @@ fn bad_input_leaves_everything_unchanged() {
     far.iter_mut().for_each(|p| p[0] = 1.5e308);
     let huge = CNet::new([-1.5e308, 0.0, 0.0], &far).unwrap();
     assert!(!huge.to_dnet().is_finite());
-    assert_eq!(sub.reset_from_cnet(&huge), Err(Error::NonFinite));
-    assert_eq!(sub.reset(&huge.to_dnet()), Err(Error::NonFinite));
+    assert_eq!(sub.reset(&huge, None), Err(Error::NonFinite));
+    assert_eq!(sub.reset(&huge.to_dnet(), None), Err(Error::NonFinite));
     // Valences without a built-in rule.
     let c6 = cnet(6, 33);
     assert_eq!(
-        sub.reset_from_cnet(&c6),
+        sub.reset(&c6, None),
         Err(Error::ValenceUnsupported { valence: 6 })
     );
     assert_eq!(
-        sub.reset(&c6.to_dnet()),
+        sub.reset(&c6.to_dnet(), None),
         Err(Error::ValenceUnsupported { valence: 6 })
     );
     // A table of another valence.
     let t3 = RuleTable::builtin(3).unwrap();
-    assert_eq!(
-        sub.reset_with_table(&c5.to_dnet(), t3),
-        Err(Error::TableShape)
-    );
-    assert_eq!(
-        sub.reset_from_cnet_with_table(&c5, t3),
-        Err(Error::TableShape)
-    );
+    assert_eq!(sub.reset(&c5.to_dnet(), Some(t3)), Err(Error::TableShape));
+    assert_eq!(sub.reset(&c5, Some(t3)), Err(Error::TableShape));
     assert_eq!(state(&sub), before);
     // Still steps on as if nothing happened.
-    let mut twin = EgSubdivision::from_cnet(&c5).unwrap();
+    let mut twin = EgSubdivision::new(&c5, None).unwrap();
     for _ in 0..pre + 1 {
         twin.step().unwrap();
     }
@@ -345,7 +342,7 @@ fn huge_nets_step_exactly_or_fail_unchanged() {
             let Ok(d) = DNet::new(&scaled, Some([-f * 10.0, 0.0, 0.0])) else {
                 continue;
             };
-            let mut sub = EgSubdivision::new(d.clone()).unwrap();
+            let mut sub = EgSubdivision::new(&d, None).unwrap();
             let mut chain = d;
             for _ in 0..steps {
                 let before = state(&sub);

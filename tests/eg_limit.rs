@@ -57,7 +57,7 @@ proptest! {
         let mut rng = Rng(seed | 1);
         let ext = ExtNet::random(n, &mut rng, 0.5);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
-        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        let mut sub = EgSubdivision::new(&c, None).unwrap();
         let c0 = sub.c0();
         prop_assert_eq!(c0, c.limit());
         // Under Miri (an EG step takes seconds there) two steps.
@@ -109,7 +109,7 @@ fn contraction_rate_is_the_spec_lambda() {
         let mut rng = Rng(0xabc + n as u64);
         let ext = ExtNet::random(n, &mut rng, 0.7);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
-        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        let mut sub = EgSubdivision::new(&c, None).unwrap();
         let c0 = sub.c0();
         let dist = |s: &EgSubdivision<f64>| {
             s.net()

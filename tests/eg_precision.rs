@@ -26,8 +26,8 @@ fn worst_relative_by(ext: &ExtNet, steps: usize, fourier: bool) -> f64 {
     let c64 = CNet::new(ext.center, &nodes).unwrap();
     let nodes32: Vec<[f32; 3]> = nodes.iter().map(|p| p.map(|c| c as f32)).collect();
     let c32 = CNet::new(ext.center.map(|c| c as f32), &nodes32).unwrap();
-    let mut a = EgSubdivision::from_cnet(&c64).unwrap();
-    let mut b = EgSubdivision::from_cnet(&c32).unwrap();
+    let mut a = EgSubdivision::new(&c64, None).unwrap();
+    let mut b = EgSubdivision::new(&c32, None).unwrap();
     let rule = b.table().map(|t| FourierRule::new(t).unwrap());
     let mut worst = a.c0().max_abs_diff(b.c0().cast());
     for _ in 0..steps {

@@ -59,7 +59,7 @@ fn assemble(ext: &ExtNet, steps: usize) -> Vec<Placed> {
         }
     }
     let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
-    let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+    let mut sub = EgSubdivision::new(&c, None).unwrap();
     for m in 0..steps {
         sub.step().unwrap();
         let size = 0.5f64.powi(m as i32); // the level-m hole [0, size]²
@@ -221,7 +221,7 @@ fn valence4_rings_are_the_bicubic_cap() {
     let ext = ExtNet::random(4, &mut rng, 0.5);
     let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
     let cap = c.regular_cap().unwrap();
-    let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+    let mut sub = EgSubdivision::new(&c, None).unwrap();
     let mut worst = 0.0f64;
     // Under Miri one ring, sampled at the patches' corners and centre.
     let samples: &[usize] = if cfg!(miri) {
@@ -260,7 +260,7 @@ fn kernel_evaluation_and_normals_across_boundaries() {
     for &n in if cfg!(miri) { &[3usize][..] } else { &[3, 5] } {
         let ext = ExtNet::random(n, &mut rng, 0.3);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
-        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        let mut sub = EgSubdivision::new(&c, None).unwrap();
         sub.step().unwrap();
         let ring0: Vec<_> = sub.ring_patches().collect();
         sub.step().unwrap();

@@ -142,7 +142,7 @@ fn check<R: Real>(n: usize, seed: u64, levels: u32) -> usize {
         .map(|p| p.map(R::from_f64))
         .collect();
     let c = CNet::new(ext.center.map(R::from_f64), &nodes).unwrap();
-    let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+    let mut sub = EgSubdivision::new(&c, None).unwrap();
     let mut compared = 0;
     for _ in 0..levels {
         sub.step().unwrap();

@@ -39,9 +39,9 @@ proptest! {
         t in prop::array::uniform3(-10.0f64..10.0),
     ) {
         let nodes = &nodes[..12 * n];
-        let mut a = EgSubdivision::new(DNet::new(nodes, Some(c0)).unwrap()).unwrap();
+        let mut a = EgSubdivision::new(&DNet::new(nodes, Some(c0)).unwrap(), None).unwrap();
         let moved: Vec<[f64; 3]> = nodes.iter().map(|p| affine(&m, t, *p)).collect();
-        let mut b = EgSubdivision::new(DNet::new(&moved, Some(affine(&m, t, c0))).unwrap()).unwrap();
+        let mut b = EgSubdivision::new(&DNet::new(&moved, Some(affine(&m, t, c0))).unwrap(), None).unwrap();
         // Under Miri (an EG step takes seconds there) one step.
         for _ in 0..if cfg!(miri) { 1 } else { 3 } {
             a.step().unwrap();
@@ -71,7 +71,7 @@ proptest! {
         grid in prop::array::uniform5(prop::array::uniform5(prop::array::uniform3(-10.0f64..10.0))),
     ) {
         let mut g: Vec<Vec<[f64; 3]>> = grid.iter().map(|r| r.to_vec()).collect();
-        let mut sub = EgSubdivision::from_cnet(&cnet_of_grid(&g)).unwrap();
+        let mut sub = EgSubdivision::new(&cnet_of_grid(&g), None).unwrap();
         // Under Miri one step.
         for _ in 0..if cfg!(miri) { 1 } else { 4 } {
             sub.step().unwrap();
@@ -160,8 +160,8 @@ fn builtin_table_as_user_table() {
         let mut rng = Rng(900 + n as u64);
         let ext = ExtNet::random(n, &mut rng, 0.5);
         let d = CNet::new(ext.center, &ext.cnet_nodes()).unwrap().to_dnet();
-        let mut a = EgSubdivision::new(d.clone()).unwrap();
-        let mut u = EgSubdivision::with_table(d.clone(), user).unwrap();
+        let mut a = EgSubdivision::new(&d, None).unwrap();
+        let mut u = EgSubdivision::new(&d, Some(user)).unwrap();
         for _ in 0..3 {
             a.step().unwrap();
             u.step().unwrap();

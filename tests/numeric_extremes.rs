@@ -261,12 +261,12 @@ fn eg_contract<R: Range>(n: usize, scale: Scale, seed: u64) -> Result<(), TestCa
         }
     };
     // `CNet::limit` / `to_dnet` are the unchecked forms (documented: finite
-    // unless coordinate differences overflow); `from_cnet` is their check.
+    // unless coordinate differences overflow); `EgSubdivision::new` is their check.
     prop_assert_eq!(
-        EgSubdivision::from_cnet(&net).is_ok(),
+        EgSubdivision::new(&net, None).is_ok(),
         net.to_dnet().is_finite()
     );
-    let mut eg = match EgSubdivision::from_cnet(&net) {
+    let mut eg = match EgSubdivision::new(&net, None) {
         Ok(eg) => eg,
         Err(e) => {
             // Degree raising overflowed: only possible beyond MAX/1024.
@@ -465,7 +465,7 @@ fn measured_edges() {
                 // EG, n = 5.
                 let pts: Vec<[R; 3]> = (0..31).map(|_| pt()).collect();
                 let c = CNet::new(pts[0], &pts[1..]).unwrap();
-                match EgSubdivision::from_cnet(&c) {
+                match EgSubdivision::new(&c, None) {
                     Ok(mut eg) => {
                         for _ in 0..4 {
                             if eg.step().is_err() {

@@ -41,7 +41,7 @@ unsafe fn eg_refined<R: Real>(
         }));
     }
     let net = CNet::new(center, points).map_err(|e| code(&e))?;
-    sub.reset_from_cnet(&net).map_err(|e| code(&e))?;
+    sub.reset(&net, None).map_err(|e| code(&e))?;
     for _ in 0..steps {
         sub.step().map_err(|e| code(&e))?;
     }

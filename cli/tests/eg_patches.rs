@@ -76,7 +76,7 @@ fn patches_equal_the_kernel_bit_for_bit() {
         let file = write_json(dir.path(), "c.json", &cnet_json(center, &sectors));
         let ps = patches(&["patches", "--depth", "3", s(&file)]);
         let mut eg =
-            EgSubdivision::from_cnet(&CNet::from_sectors(center, &sectors).unwrap()).unwrap();
+            EgSubdivision::new(&CNet::from_sectors(center, &sectors).unwrap(), None).unwrap();
         let mut want = Vec::new();
         for _ in 0..3 {
             eg.step().unwrap();

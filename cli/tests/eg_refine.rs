@@ -16,7 +16,7 @@ fn kernel_cnet<R: capdiv::Real>(
     let cast = |p: [f64; 3]| p.map(R::from_f64);
     let sectors: Vec<[[R; 3]; 6]> = sectors.iter().map(|s| s.map(cast)).collect();
     let net = CNet::from_sectors(cast(center), &sectors).unwrap();
-    let mut eg = EgSubdivision::from_cnet(&net).unwrap();
+    let mut eg = EgSubdivision::new(&net, None).unwrap();
     for _ in 0..m {
         eg.step().unwrap();
     }
@@ -98,7 +98,8 @@ fn dnet_inputs_equal_the_kernel_with_and_without_c0() {
         for given in [Some(c0), None] {
             let file = write_json(dir.path(), "d.json", &dnet_json(&sectors, given));
             let out = capdiv(&["refine", "--steps", "3", s(&file)], None).ok_json();
-            let mut eg = EgSubdivision::new(DNet::from_sectors(&sectors, given).unwrap()).unwrap();
+            let mut eg =
+                EgSubdivision::new(&DNet::from_sectors(&sectors, given).unwrap(), None).unwrap();
             for _ in 0..3 {
                 eg.step().unwrap();
             }

@@ -234,7 +234,7 @@ fn native_eg(center: [f64; 3], nodes: &[f64], steps: u32) -> (Native, Native) {
         Ok(net) => net,
         Err(e) => return (fail(e), fail(e)),
     };
-    let mut sub = match EgSubdivision::from_cnet(&net) {
+    let mut sub = match EgSubdivision::new(&net, None) {
         Ok(sub) => sub,
         Err(e) => return (fail(e), fail(e)),
     };

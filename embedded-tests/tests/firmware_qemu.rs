@@ -161,7 +161,7 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
         let net = CNet::new(EG_CENTER, nodes).unwrap();
         let n = net.valence();
         add("eglimit", &[n], p(net.limit()));
-        let mut sub = EgSubdivision::from_cnet(&net).unwrap();
+        let mut sub = EgSubdivision::new(&net, None).unwrap();
         for _ in 0..EG_STEPS {
             sub.step().unwrap();
         }

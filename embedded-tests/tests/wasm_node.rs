@@ -82,7 +82,7 @@ fn native_eg(center: [f64; 3], nodes: &[f64], steps: u32) -> (i32, Vec<f64>, i32
         Ok(net) => net,
         Err(e) => return fail(e),
     };
-    let mut sub = match EgSubdivision::from_cnet(&net) {
+    let mut sub = match EgSubdivision::new(&net, None) {
         Ok(sub) => sub,
         Err(e) => return fail(e),
     };

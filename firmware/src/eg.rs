@@ -26,7 +26,7 @@ pub fn run() -> Result<(), Failure> {
 
 /// The c-net and the subdivision live in statics (`.bss`, size known at link
 /// time), const-constructed empty and loaded in place by `CNet::reset` and
-/// `EgSubdivision::reset_from_cnet`, so no net-sized value is ever on the
+/// `EgSubdivision::reset`, so no net-sized value is ever on the
 /// stack. Each sample reuses them: with two, the micro:bit's 16 KiB would not
 /// hold the statics and the stack.
 #[inline(never)]
@@ -44,7 +44,7 @@ fn sample<const M: usize>(
     sub: &mut Sub,
 ) -> Result<(), Failure> {
     net.reset(EG_CENTER_F32, nodes)?;
-    sub.reset_from_cnet(net)?;
+    sub.reset(net, None)?;
     one(net, sub)
 }
 

@@ -160,13 +160,13 @@ mod eg {
                     t.listed(InnerNode::D32),
                 );
                 if let Ok(user) = user {
-                    if let Ok(mut sub) = EgSubdivision::with_table(d.clone(), user) {
+                    if let Ok(mut sub) = EgSubdivision::new(&d, Some(user)) {
                         let _ = black_box(sub.step());
                         let _ = black_box(sub.ring_patch(black_box(2)));
                     }
                 }
             }
-            if let Ok(mut sub) = EgSubdivision::new(d) {
+            if let Ok(mut sub) = EgSubdivision::new(&d, None) {
                 let _ = black_box(sub.step());
                 let _ = black_box(sub.ring_patch(black_box(2)));
                 for patch in sub.ring_patches() {
@@ -180,7 +180,7 @@ mod eg {
         let flat = flat.get(..black_box(54)).unwrap_or(flat);
         let _ = black_box(CNet::from_flat(center, flat).map(|c| c.limit()));
         if let Ok(d) = DNet::from_flat(flat, c0) {
-            if let Ok(sub) = EgSubdivision::new(d) {
+            if let Ok(sub) = EgSubdivision::new(&d, None) {
                 let _ = black_box(sub.ring_patch_domain(black_box(1)));
             }
         }
@@ -195,11 +195,11 @@ mod eg {
         let _ = black_box(dnet.reset_flat(flat, c0));
         let _ = black_box(dnet.reset_sectors(black_box(&[[[R::ZERO; 3]; 12]; 3]), c0));
         let mut sub = EgSubdivision::<R>::empty();
-        let _ = black_box(sub.reset_from_cnet(&cnet));
-        let _ = black_box(sub.reset(&dnet));
+        let _ = black_box(sub.reset(&cnet, None));
+        let _ = black_box(sub.reset(&dnet, None));
         if let Some(t) = RuleTable::builtin(black_box(5)) {
-            let _ = black_box(sub.reset_with_table(&dnet, t));
-            let _ = black_box(sub.reset_from_cnet_with_table(&cnet, t));
+            let _ = black_box(sub.reset(&dnet, Some(t)));
+            let _ = black_box(sub.reset(&cnet, Some(t)));
         }
         let _ = black_box(sub.step());
         black_box(lambda_catmull_clark(black_box(7)));

@@ -222,7 +222,7 @@ fn fourier_step<R: FuzzReal>(
     } else if rule.valence() != eg.valence() || eg.table().is_none() {
         Err(Error::TableShape)
     } else {
-        let mut d = EgSubdivision::with_table(old.clone(), *rule.table())
+        let mut d = EgSubdivision::new(&old, Some(*rule.table()))
             .expect("a held net is finite and of the table's valence");
         let r = d.step();
         dense = Some(d);
@@ -305,19 +305,23 @@ fn eg_ops<'t, R: FuzzReal>(
                 }
                 let before = snap_eg(eg);
                 let r = match (&table, u.arbitrary::<bool>()?) {
-                    (Some(t), true) => eg.reset_from_cnet_with_table(&cnet, *t),
-                    _ => eg.reset_from_cnet(&cnet),
+                    (Some(t), true) => eg.reset(&cnet, Some(*t)),
+                    _ => eg.reset(&cnet, None),
                 };
                 match r {
                     Err(e) => {
-                        assert_eq!(before, snap_eg(eg), "reset_from_cnet {e:?} changed state")
+                        assert_eq!(
+                            before,
+                            snap_eg(eg),
+                            "reset from a c-net {e:?} changed state"
+                        )
                     }
                     Ok(()) => {
-                        assert!(dnet_finite(eg.net()), "Ok reset_from_cnet not finite");
+                        assert!(dnet_finite(eg.net()), "Ok reset from a c-net not finite");
                         steps = 0;
                     }
                 }
-                if let Ok(fresh) = EgSubdivision::from_cnet(&cnet) {
+                if let Ok(fresh) = EgSubdivision::new(&cnet, None) {
                     assert!(dnet_finite(fresh.net()));
                 }
             }
@@ -338,8 +342,8 @@ fn eg_ops<'t, R: FuzzReal>(
                 let Ok(d) = r else { continue };
                 let before = snap_eg(eg);
                 let r = match (&table, u.arbitrary::<bool>()?) {
-                    (Some(t), true) => eg.reset_with_table(&d, *t),
-                    _ => eg.reset(&d),
+                    (Some(t), true) => eg.reset(&d, Some(*t)),
+                    _ => eg.reset(&d, None),
                 };
                 match r {
                     Err(e) => assert_eq!(before, snap_eg(eg), "reset {e:?} changed state"),

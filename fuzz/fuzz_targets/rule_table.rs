@@ -43,7 +43,7 @@ fuzz_target!(|data: &[u8]| {
     }
     let cnet = CNet::<f64>::new([0.0; 3], &nodes).expect("valid c-net");
     let mut eg =
-        EgSubdivision::with_table(cnet.to_dnet(), rule).expect("table of the net's valence");
+        EgSubdivision::new(&cnet.to_dnet(), Some(rule)).expect("table of the net's valence");
     for _ in 0..2 {
         eg.step().expect("a checked table refines a unit net");
         assert_eq!(eg.ring_patches().count(), 3 * n);

@@ -38,9 +38,9 @@ fn deviation_by(
     let a = matrix(n, None).expect("built-in table");
     let net = DNet::from_sectors(sectors, Some(c0)).expect("valid d-net");
     let mut eg = if user_table {
-        EgSubdivision::with_table(net, RuleTable::builtin(n).expect("built-in")).unwrap()
+        EgSubdivision::new(&net, Some(RuleTable::builtin(n).expect("built-in"))).unwrap()
     } else {
-        EgSubdivision::new(net).unwrap()
+        EgSubdivision::new(&net, None).unwrap()
     };
     if fourier {
         let rule = FourierRule::new(eg.table().expect("EG table")).unwrap();

@@ -667,8 +667,7 @@ impl<R: Real> Scratch<R> {
                     // subdivision (about 6 KiB in f64).
                     Some(table) => {
                         let mut eg = EgSubdivision::empty();
-                        eg.reset_from_cnet_with_table(&net, *table)
-                            .map_err(kernel)?;
+                        eg.reset(&net, Some(*table)).map_err(kernel)?;
                         run_eg(
                             &mut eg,
                             None,
@@ -680,7 +679,7 @@ impl<R: Real> Scratch<R> {
                         )?;
                     }
                     None => {
-                        self.eg.reset_from_cnet(&net).map_err(kernel)?;
+                        self.eg.reset(&net, None).map_err(kernel)?;
                         let n = self.eg.valence();
                         let rule = eg_rules.iter().find(|r| r.valence() == n);
                         let limits = (depth, self.hole_tolerance);

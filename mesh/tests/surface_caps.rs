@@ -136,7 +136,7 @@ fn eg_caps_equal_eg_subdivision_rings() {
         let (centre, nodes) = disk_cnet(&m, n, 3);
         let net = CNet::new(centre, &nodes).unwrap();
         let mut eg: Box<EgSubdivision<'static, f64>> =
-            Box::new(EgSubdivision::from_cnet(&net).unwrap());
+            Box::new(EgSubdivision::new(&net, None).unwrap());
         assert!(dist(cap.limit.0, eg.c0().0) < 1e-15);
         let mut worst = 0.0f64;
         for level in 1..=depth {

@@ -852,7 +852,7 @@ fn eg_cap_rings_weld_into_a_disk() {
         }
         let c = CNet::new([0.0, 0.0, 0.02], &nodes).unwrap();
         let limit = c.limit();
-        let mut sub = EgSubdivision::from_cnet(&c).unwrap();
+        let mut sub = EgSubdivision::new(&c, None).unwrap();
         let steps = 4;
         let mut patches = Vec::new();
         for m in 0..steps {

@@ -27,7 +27,7 @@
 //!     }
 //! }
 //! let net = CNet::new([0.0, 0.0, 0.0], &nodes)?;
-//! let mut eg = EgSubdivision::from_cnet(&net)?;
+//! let mut eg = EgSubdivision::new(&net, None)?;
 //! for _ in 0..4 {
 //!     eg.step()?;
 //!     for (k, patch) in eg.ring_patches().enumerate() {
@@ -56,7 +56,7 @@ pub use net::{CNet, CSector, DNet, DSector, C_SECTOR, D_SECTOR};
 pub use ring::PATCHES_PER_SECTOR;
 pub use rule::{InnerNode, RuleTable, WEIGHT_SCALE};
 pub use spectrum::{lambda_catmull_clark, LAMBDA_TOLERANCE};
-pub use subdivision::{EgRingPatches, EgSubdivision, PatchDomain};
+pub use subdivision::{EgRingPatches, EgStart, EgSubdivision, PatchDomain};
 
 /// The largest valence EG supports (the paper's tables stop at 10).
 pub const MAX_VALENCE: usize = 10;

@@ -18,7 +18,7 @@ use crate::real::Real;
 /// (≈ 2.9 KiB for `f32`, 5.8 KiB for `f64`). [`EgSubdivision::step`] writes
 /// the new net over the previous one, so it needs no net-sized temporary;
 /// where stack is scarce, keep an [`EgSubdivision::empty`] in a `static` and
-/// load it with [`EgSubdivision::reset_from_cnet`] (or [`EgSubdivision::reset`]).
+/// load it with [`EgSubdivision::reset`].
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct EgSubdivision<'t, R> {
@@ -30,28 +30,49 @@ pub struct EgSubdivision<'t, R> {
     level: u32,
 }
 
-impl<R: Real> EgSubdivision<'static, R> {
-    /// Starts from a d-net with the built-in rule of its valence: the §7
-    /// table for n = 3, 5; the regular rules for n = 4 (see
-    /// [`EgSubdivision::step`]). [`Error::ValenceUnsupported`] for n = 6..10,
-    /// whose rules must come from the caller ([`EgSubdivision::with_table`]);
-    /// [`Error::NonFinite`] for a net with a non-finite node (only
-    /// [`CNet::to_dnet`] of a c-net whose coordinate differences overflow can
-    /// make one); [`Error::ValenceTooSmall`] for an empty net.
-    pub fn new(net: DNet<R>) -> Result<Self, Error> {
-        let mut sub = Self::empty();
-        sub.reset(&net)?;
-        Ok(sub)
+/// What an EG subdivision starts from: a [`CNet`] (degree-raised to its
+/// d-net, §3, `c0` by (3), written in place without a d-net temporary) or a
+/// [`DNet`] (copied). Sealed.
+pub trait EgStart<R>: sealed::Start<R> {}
+
+mod sealed {
+    use super::{CNet, DNet};
+    use crate::real::Real;
+
+    pub trait Start<R> {
+        fn valence(&self) -> usize;
+        /// The level-0 d-net is finite (checked before anything is written).
+        fn finite(&self) -> bool;
+        fn write(&self, out: &mut DNet<R>);
     }
 
-    /// [`EgSubdivision::new`] of the c-net's degree-raised d-net (§3), `c0` by
-    /// (3), built in place (no d-net temporary).
-    pub fn from_cnet(net: &CNet<R>) -> Result<Self, Error> {
-        let mut sub = Self::empty();
-        sub.reset_from_cnet(net)?;
-        Ok(sub)
+    impl<R: Real> Start<R> for CNet<R> {
+        fn valence(&self) -> usize {
+            CNet::valence(self)
+        }
+        fn finite(&self) -> bool {
+            self.raises_finite()
+        }
+        fn write(&self, out: &mut DNet<R>) {
+            self.raise_into(out)
+        }
+    }
+
+    impl<R: Real> Start<R> for DNet<R> {
+        fn valence(&self) -> usize {
+            DNet::valence(self)
+        }
+        fn finite(&self) -> bool {
+            self.is_finite()
+        }
+        fn write(&self, out: &mut DNet<R>) {
+            out.assign(self)
+        }
     }
 }
+
+impl<R: Real> EgStart<R> for CNet<R> {}
+impl<R: Real> EgStart<R> for DNet<R> {}
 
 /// The built-in rule of valence `n` (`None`: n = 4, regular).
 fn builtin_rule(n: usize) -> Result<Option<RuleTable<'static>>, Error> {
@@ -65,8 +86,7 @@ fn builtin_rule(n: usize) -> Result<Option<RuleTable<'static>>, Error> {
 impl<'t, R: Real> EgSubdivision<'t, R> {
     /// An empty subdivision (valence 0, no rule), usable in a `static`
     /// (all-zero bytes, so it lands in `.bss`): load it in place with
-    /// [`EgSubdivision::reset_from_cnet`], [`EgSubdivision::reset`] or
-    /// [`EgSubdivision::reset_with_table`]. Its [`EgSubdivision::step`]
+    /// [`EgSubdivision::reset`]. Its [`EgSubdivision::step`]
     /// returns [`Error::ValenceTooSmall`]; its ring is empty.
     pub const fn empty() -> Self {
         EgSubdivision {
@@ -77,73 +97,44 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         }
     }
 
-    /// Starts from a d-net with a checked table of the same valence
-    /// ([`RuleTable::new`] or [`RuleTable::builtin`]); [`Error::TableShape`]
-    /// when the valences differ, [`Error::NonFinite`] as in [`EgSubdivision::new`].
-    pub fn with_table(net: DNet<R>, table: RuleTable<'t>) -> Result<Self, Error> {
+    /// Starts from a c-net or a d-net ([`EgStart`]) at level 0 with the rule
+    /// `table`: a checked table of the net's valence ([`RuleTable::new`] or
+    /// [`RuleTable::builtin`]), or `None` for the built-in rule of the
+    /// valence — the §7 table for n = 3, 5, the regular rules for n = 4 (see
+    /// [`EgSubdivision::step`]).
+    ///
+    /// Errors, in this order: [`Error::ValenceTooSmall`] for an empty net;
+    /// [`Error::NonFinite`] when the level-0 d-net has a non-finite node (a
+    /// c-net whose raised net would overflow, checked by computing it once
+    /// without storing it; a d-net from [`CNet::to_dnet`] of such a c-net);
+    /// with `None`, [`Error::ValenceUnsupported`] for n = 6..10, whose rules
+    /// must come from the caller; with a table, [`Error::TableShape`] when
+    /// its valence is not the net's.
+    pub fn new<N: EgStart<R>>(net: &N, table: Option<RuleTable<'t>>) -> Result<Self, Error> {
         let mut sub = Self::empty();
-        sub.reset_with_table(&net, table)?;
+        sub.reset(net, table)?;
         Ok(sub)
     }
 
-    /// [`EgSubdivision::new`] in place: restarts from a copy of `net` at level
-    /// 0, whatever `self` held. Errors as `new`; every check runs before
-    /// anything is written, so on error `self` is unchanged. Stack use is a
-    /// few words.
-    pub fn reset(&mut self, net: &DNet<R>) -> Result<(), Error> {
-        check_valence(net.valence())?;
-        if !net.is_finite() {
-            return Err(Error::NonFinite);
-        }
-        let table = builtin_rule(net.valence())?;
-        self.install(table, |cur| cur.assign(net));
-        Ok(())
-    }
-
-    /// [`EgSubdivision::with_table`] in place; on error `self` is unchanged.
-    pub fn reset_with_table(&mut self, net: &DNet<R>, table: RuleTable<'t>) -> Result<(), Error> {
-        check_valence(net.valence())?;
-        if !net.is_finite() {
-            return Err(Error::NonFinite);
-        }
-        if table.valence() != net.valence() {
-            return Err(Error::TableShape);
-        }
-        self.install(Some(table), |cur| cur.assign(net));
-        Ok(())
-    }
-
-    /// [`EgSubdivision::from_cnet`] in place: restarts from the c-net's
-    /// degree-raised d-net (§3, `c0` by (3)), written straight into `self`.
-    /// Errors as `from_cnet` ([`Error::NonFinite`] when the raised net would
-    /// overflow: checked by computing it once without storing it, so on error
-    /// `self` is unchanged; [`Error::ValenceTooSmall`] for an empty c-net).
-    pub fn reset_from_cnet(&mut self, net: &CNet<R>) -> Result<(), Error> {
-        check_valence(net.valence())?;
-        if !net.raises_finite() {
-            return Err(Error::NonFinite);
-        }
-        let table = builtin_rule(net.valence())?;
-        self.install(table, |cur| net.raise_into(cur));
-        Ok(())
-    }
-
-    /// [`EgSubdivision::reset_from_cnet`] with a checked table of the c-net's
-    /// valence (as [`EgSubdivision::reset_with_table`]): how n = 6..10 starts
-    /// from a c-net without a d-net temporary.
-    pub fn reset_from_cnet_with_table(
+    /// [`EgSubdivision::new`] in place: restarts at level 0, whatever `self`
+    /// held. Errors as `new`; every check runs before anything is written, so
+    /// on error `self` is unchanged. Stack use is a few words.
+    pub fn reset<N: EgStart<R>>(
         &mut self,
-        net: &CNet<R>,
-        table: RuleTable<'t>,
+        net: &N,
+        table: Option<RuleTable<'t>>,
     ) -> Result<(), Error> {
-        check_valence(net.valence())?;
-        if !net.raises_finite() {
+        let n = net.valence();
+        check_valence(n)?;
+        if !net.finite() {
             return Err(Error::NonFinite);
         }
-        if table.valence() != net.valence() {
-            return Err(Error::TableShape);
-        }
-        self.install(Some(table), |cur| net.raise_into(cur));
+        let table = match table {
+            Some(t) if t.valence() != n => return Err(Error::TableShape),
+            Some(t) => Some(t),
+            None => builtin_rule(n)?,
+        };
+        self.install(table, |cur| net.write(cur));
         Ok(())
     }
 

@@ -83,8 +83,8 @@ pub fn subdivision<'t, R: Scalar>(
     let kernel = |e| CliError::kernel(name, e);
     match table {
         Some(t) => {
-            EgSubdivision::with_table(net, user_rule(t, name, input.valence())?).map_err(kernel)
+            EgSubdivision::new(&net, Some(user_rule(t, name, input.valence())?)).map_err(kernel)
         }
-        None => EgSubdivision::new(net).map_err(kernel),
+        None => EgSubdivision::new(&net, None).map_err(kernel),
     }
 }
