@@ -288,8 +288,36 @@ impl<'s, R: Real> CcCap<'s, R> {
         Ok(PatchDomain::of_ring_patch(self.level, k))
     }
 
-    /// All patches of the last step's ring, in index order.
-    pub fn ring_patches(&self) -> impl Iterator<Item = BicubicPatch<R>> + '_ {
-        (0..self.ring_len()).filter_map(move |k| self.ring_patch(k).ok())
+    /// All patches of the last step's ring, in index order (as
+    /// [`crate::eg::EgSubdivision::ring_patches`]).
+    pub fn ring_patches(&self) -> CcRingPatches<'_, 's, R> {
+        CcRingPatches { cap: self, next: 0 }
     }
 }
+
+/// Iterator over the patches of a [`CcCap`]'s last ring:
+/// [`CcCap::ring_patches`].
+#[derive(Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct CcRingPatches<'a, 's, R> {
+    cap: &'a CcCap<'s, R>,
+    next: usize,
+}
+
+impl<R: Real> Iterator for CcRingPatches<'_, '_, R> {
+    type Item = BicubicPatch<R>;
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.next >= self.cap.ring_len() {
+            return None;
+        }
+        let p = self.cap.ring_patch(self.next).ok()?;
+        self.next = self.next.saturating_add(1);
+        Some(p)
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.cap.ring_len().saturating_sub(self.next);
+        (left, Some(left))
+    }
+}
+
+impl<R: Real> ExactSizeIterator for CcRingPatches<'_, '_, R> {}

@@ -41,4 +41,4 @@ pub mod cap;
 pub mod limit;
 pub mod refine;
 
-pub use cap::{CcCap, EXT_SECTOR, PATCHES_PER_SECTOR};
+pub use cap::{CcCap, CcRingPatches, EXT_SECTOR, PATCHES_PER_SECTOR};
