@@ -83,7 +83,7 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
 
     /// Position and partials at `(u, v) ∈ [0,1]²`; [`Error::OutOfDomain`] otherwise.
     /// de Casteljau's algorithm on the control points relative to the first
-    /// one ([`Self::origin`]), the position shifted back at the end.
+    /// one (`origin`), the position shifted back at the end.
     pub fn evaluate(&self, u: R, v: R) -> Result<PatchPoint<R>, Error> {
         let inside = |t: R| t.is_finite() && t >= R::ZERO && t <= R::ONE;
         if !inside(u) || !inside(v) {
