@@ -28,7 +28,7 @@ mod osd;
 
 use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord};
 use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink, Topology};
-use common::{feature_torus, helper, icosphere, job_file, time, DEPTH};
+use common::{feature_torus, helper, job_file, time, DEPTH};
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::path::Path;
@@ -51,8 +51,8 @@ fn cases(keep: &dyn Fn(&str) -> bool) -> Vec<Case> {
         ("grid-1e4", || samples::grid(100, 100)),
         ("grid-1e5", || samples::grid(316, 316)),
         ("feature-mix-1e4", || samples::feature_mix(10_000)),
-        ("icosphere-1280", || icosphere(3)),
-        ("icosphere-5120", || icosphere(4)),
+        ("icosphere-1280", || samples::icosphere(3)),
+        ("icosphere-5120", || samples::icosphere(4)),
         ("globe(8,12)", || samples::globe(8, 12)),
         ("mushroom", samples::mushroom),
         ("hand", samples::hand),

@@ -17,7 +17,6 @@
 //! `cargo run --release -p capdiv-mesh --example bench_mesh -- mixed 10000 > mixed-1e4.obj`
 
 use capdiv_mesh::{samples, MeshInput};
-use std::collections::HashMap;
 use std::io::{BufWriter, Write};
 
 /// Copies of the parts of [`samples::feature_mix`], at least `faces`
@@ -75,70 +74,6 @@ fn triangle_torus(k: usize) -> MeshInput {
     MeshInput::new(vertices, faces)
 }
 
-/// The unit icosahedron split `levels` times into four.
-fn icosphere(levels: u32) -> MeshInput {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let unit = |p: [f64; 3]| {
-        let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
-        [p[0] / r, p[1] / r, p[2] / r]
-    };
-    let mut vertices: Vec<[f64; 3]> = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .map(unit)
-    .to_vec();
-    let mut faces: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..levels {
-        let mut mid: HashMap<(u32, u32), u32> = HashMap::new();
-        let mut next = Vec::with_capacity(4 * faces.len());
-        for [a, b, c] in faces {
-            let mut m = |x: u32, y: u32| {
-                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
-                    let (p, q) = (vertices[x as usize], vertices[y as usize]);
-                    vertices.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
-                    (vertices.len() - 1) as u32
-                })
-            };
-            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
-            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        faces = next;
-    }
-    MeshInput::new(vertices, faces.into_iter().map(|f| f.to_vec()).collect())
-}
-
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let number = |i: usize| -> usize {
@@ -152,7 +87,7 @@ fn main() {
             let k = ((number(1) as f64 / 2.0).sqrt().round()) as usize;
             triangle_torus(k)
         }
-        Some("icosphere") => icosphere(number(1) as u32),
+        Some("icosphere") => samples::icosphere(number(1) as u32),
         _ => usage(),
     };
     let mut out = BufWriter::new(std::io::stdout().lock());

@@ -15,6 +15,7 @@
 //!   [`cube`], [`rounded_cube`], [`two_beam_corner`], [`extraordinary_disk`],
 //!   and the finger junctions of [`hand`];
 //! - regular quad meshes: [`torus`], [`grid`];
+//! - a triangle mesh with valence-5 and -6 vertices: [`icosphere`];
 //! - faces that need refinement first: [`triangle_and_pentagon_mesh`].
 //!
 //! Angles come from a local Taylor-series `sin`/`cos` (the crate has no
@@ -560,6 +561,73 @@ pub fn torus(nu: usize, nv: usize) -> MeshInput {
     b.finish()
 }
 
+/// The unit icosahedron's triangles split `levels` times into four (edge
+/// midpoints pushed to the unit sphere): `20·4^levels` triangles, twelve
+/// valence-5 vertices, every other vertex valence 6. Closed, Euler
+/// characteristic 2.
+pub fn icosphere(levels: u32) -> MeshInput {
+    let t = (1.0 + libm::sqrt(5.0)) / 2.0;
+    let unit = |p: [f64; 3]| {
+        let r = libm::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        [p[0] / r, p[1] / r, p[2] / r]
+    };
+    let mut vertices: Vec<[f64; 3]> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .map(unit)
+    .to_vec();
+    let mut faces: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        let mut mid: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+        let mut next = Vec::with_capacity(4 * faces.len());
+        for [a, b, c] in faces {
+            let mut m = |x: u32, y: u32| {
+                *mid.entry((x.min(y), x.max(y))).or_insert_with(|| {
+                    let (p, q) = (vertices[x as usize], vertices[y as usize]);
+                    vertices.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
+                    (vertices.len() - 1) as u32
+                })
+            };
+            let (ab, bc, ca) = (m(a, b), m(b, c), m(c, a));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        faces = next;
+    }
+    MeshInput::new(vertices, faces.into_iter().map(|f| f.to_vec()).collect())
+}
+
 /// An OPEN regular quad patch over `[-1, 1]²`: `nu×nv` quads (each ≥ 1),
 /// `(nu+1)(nv+1)` vertices on the bumpy height field
 /// `z = 0.15·sin(πx)·cos(πy/2) + 0.05·x·y`, normals pointing up. Interior
@@ -1081,6 +1149,19 @@ mod tests {
     }
 
     #[test]
+    fn icosphere_is_a_closed_outward_sphere_of_valence_5_and_6() {
+        for levels in 0..3 {
+            let m = icosphere(levels);
+            check_closed(&m, 2);
+            assert_eq!(m.faces.len(), 20 << (2 * levels));
+            let v = valences(&m);
+            assert_eq!(v.iter().filter(|&&k| k == 5).count(), 12);
+            assert!(v.iter().all(|&k| k == 5 || k == 6));
+            assert!(volume(&m) > 0.0);
+        }
+    }
+
+    #[test]
     fn every_sample_passes_the_topology() {
         let closed = [
             globe(6, 8),
@@ -1091,6 +1172,7 @@ mod tests {
             two_beam_corner(),
             torus(8, 6),
             triangle_and_pentagon_mesh(),
+            icosphere(2),
         ];
         for m in &closed {
             assert!(crate::Topology::new(m).unwrap().is_closed());
