@@ -358,16 +358,19 @@ impl<R: Real> StreamTessellator<R> {
             self.pin.push(false);
         }
         let idx = |a: usize, b: usize| a * side + b;
+        // Corner `e` of the square (edge `e` runs from corner `e` to `e + 1`)
+        // and the `c`-th sample inside edge `e`.
+        let corner = [idx(0, 0), idx(n, 0), idx(n, n), idx(0, n)];
+        let inside = |e: usize, c: usize| match e {
+            0 => idx(c, 0),
+            1 => idx(n, c),
+            2 => idx(c, n),
+            _ => idx(0, c),
+        };
         if boundary & 0xf != 0 {
-            let corner = [idx(0, 0), idx(n, 0), idx(n, n), idx(0, n)];
             for e in (0..4).filter(|e| boundary & (1 << e) != 0) {
                 for c in 1..n {
-                    let k = match e {
-                        0 => idx(c, 0),
-                        1 => idx(n, c),
-                        2 => idx(c, n),
-                        _ => idx(0, c),
-                    };
+                    let k = inside(e, c);
                     self.turns[k] = self.turns[k].saturating_add(2);
                 }
                 for end in [e, (e + 1) % 4] {
@@ -388,19 +391,10 @@ impl<R: Real> StreamTessellator<R> {
         for e in 0..4u8 {
             let finer = p.finer & (1 << e) != 0;
             if p.hole & (1 << e) != 0 {
-                let (from, to) = match e {
-                    0 => (idx(0, 0), idx(n, 0)),
-                    1 => (idx(n, 0), idx(n, n)),
-                    2 => (idx(n, n), idx(0, n)),
-                    _ => (idx(0, n), idx(0, 0)),
-                };
+                let e = usize::from(e);
+                let (from, to) = (corner[e], corner[(e + 1) % 4]);
                 for c in 1..n {
-                    let k = match e {
-                        0 => idx(c, 0),
-                        1 => idx(n, c),
-                        2 => idx(c, n),
-                        _ => idx(0, c),
-                    };
+                    let k = inside(e, c);
                     self.turns[k] = self.turns[k].saturating_add(2);
                 }
                 if finer {
