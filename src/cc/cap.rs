@@ -6,7 +6,7 @@
 //! `(x, y)`, `x ∈ 1..=3`, `y ∈ 0..=3`, of that sector's frame (docs/math/eg.md §1)
 //! at index `(x − 1) + 3y` (12 per sector, sector `s` at `12s`). Its part with
 //! `x, y ≤ 2` is the c-net of the current level; the nodes at `x = 3` or
-//! `y = 3` (set by every step from the previous c-net, see [`super::refine`])
+//! `y = 3` (set by every step from the previous c-net, see [`super::step`])
 //! are what the ring patches reach beyond it. Level 0 holds only the c-net.
 //! The storage holds two such nets: the current one, and the one the next
 //! step writes (its neighbours' old nodes are read while it is written).

@@ -8,7 +8,7 @@
 //! layout of the EG rings ([`crate::eg::EgSubdivision::ring_patch`]):
 //!
 //! - [`cap`]: the type, construction, node access, the ring patches;
-//! - [`refine`]: one Catmull-Clark step (face, edge and vertex points);
+//! - [`step`]: one Catmull-Clark step (face, edge and vertex points);
 //! - [`limit`]: the limit point, limit tangents and unit normal at the center.
 //!
 //! ```
@@ -39,6 +39,6 @@
 
 pub mod cap;
 pub mod limit;
-pub mod refine;
+pub mod step;
 
 pub use cap::{CcCap, CcRingPatches, EXT_SECTOR, PATCHES_PER_SECTOR};

@@ -1,6 +1,6 @@
 //! [`FourierRule`]: an EG step (docs/math/eg.md §5, §6) with rule (7) factored
 //! through the discrete Fourier transform over the sectors — the same linear
-//! map as the dense sum of the `refine` module, in about half the operations.
+//! map as the dense sum of the `step` module, in about half the operations.
 //!
 //! Rule (7) is a cyclic correlation over the sectors: per inner node `o = hk`
 //! and node `i = ij`, `y_s = Σ_r a^r x_{s+r}` with `x = d − c0`, `y = d̃ − c0`
@@ -184,7 +184,7 @@ impl<'t, R: Real> FourierRule<'t, R> {
     /// copied). [`Error::TableShape`] when the valences differ, before
     /// anything is written. No overflow check: the caller's
     /// (`cannot_overflow`, as for the dense step).
-    pub(crate) fn refine(&self, old: &DNet<R>, out: &mut DNet<R>) -> Result<(), Error> {
+    pub(crate) fn step_into(&self, old: &DNet<R>, out: &mut DNet<R>) -> Result<(), Error> {
         let n = old.valence();
         if n != self.valence() || !(3..=MAX_VALENCE).contains(&n) {
             return Err(Error::TableShape);
@@ -350,7 +350,7 @@ impl<'t, R: Real> FourierRule<'t, R> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::refine::{refine, Rule};
+    use super::super::step::{step_into, Rule};
     use super::*;
 
     fn next(seed: &mut u64) -> f64 {
@@ -398,7 +398,7 @@ mod tests {
                 let rule = FourierRule::<f64>::from_rows(&table, n, row).unwrap();
                 let old = net(n, &mut seed);
                 let mut out = old.clone();
-                rule.refine(&old, &mut out).unwrap();
+                rule.step_into(&old, &mut out).unwrap();
                 for (o, node) in InnerNode::ALL.into_iter().enumerate() {
                     for s in 0..n {
                         let mut want = Point3::ZERO;
@@ -432,8 +432,8 @@ mod tests {
             for _ in 0..if cfg!(miri) { 1 } else { 20 } {
                 let old = net(n, &mut seed);
                 let (mut fast, mut dense) = (old.clone(), old.clone());
-                rule.refine(&old, &mut fast).unwrap();
-                refine(&old, Rule::Eg(&table), &mut dense).unwrap();
+                rule.step_into(&old, &mut fast).unwrap();
+                step_into(&old, Rule::Eg(&table), &mut dense).unwrap();
                 for (a, b) in fast.sectors.iter().zip(&dense.sectors) {
                     for k in OUTER {
                         assert!(a[k].max_abs_diff(b[k]) < 4e-15 * 5.0);
@@ -465,7 +465,7 @@ mod tests {
                 .collect(),
         };
         let mut out = old.clone();
-        assert_eq!(rule.refine(&old, &mut out), Err(Error::TableShape));
+        assert_eq!(rule.step_into(&old, &mut out), Err(Error::TableShape));
         assert_eq!(out, old);
     }
 }

@@ -43,11 +43,11 @@
 pub mod fourier;
 mod layout;
 pub mod net;
-mod refine;
 pub mod regular;
 pub mod ring;
 pub mod rule;
 mod spectrum;
+mod step;
 pub mod subdivision;
 pub mod tables;
 

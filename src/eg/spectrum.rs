@@ -12,8 +12,8 @@
 //! leaves a relative error ~ (μ/λ)⁶⁴ — far below the 10⁻³ tolerance.
 
 use super::net::DNet;
-use super::refine::{refine, Rule};
 use super::rule::RuleTable;
+use super::step::{step_into, Rule};
 use crate::error::Error;
 use crate::point::Point3;
 use heapless::Vec;
@@ -68,7 +68,7 @@ pub(crate) fn spectral_radius(table: &RuleTable<'_>) -> Result<f64, Error> {
     let mut b = a.clone();
     let mut log_sum = 0.0f64;
     for k in 0..WARM_UP + MEASURE {
-        refine(&a, Rule::Eg(table), &mut b)?;
+        step_into(&a, Rule::Eg(table), &mut b)?;
         let m = max_abs(&b);
         if !m.is_finite() {
             return Ok(f64::INFINITY);

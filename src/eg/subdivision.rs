@@ -3,9 +3,9 @@
 
 use super::fourier::FourierRule;
 use super::net::{check_valence, CNet, DNet};
-use super::refine::{cannot_overflow, refine, refines_finite, Rule};
 use super::ring::{ring_patch, OwnNodes, PATCHES_PER_SECTOR};
 use super::rule::RuleTable;
+use super::step::{cannot_overflow, step_into, step_is_finite, Rule};
 use crate::bezier::BiquarticPatch;
 use crate::error::Error;
 use crate::point::Point3;
@@ -187,12 +187,12 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         };
         let [a, b] = &mut self.nets;
         let (cur, out) = if self.flip { (&*b, a) } else { (&*a, b) };
-        if !cannot_overflow(cur) && !refines_finite(cur, rule)? {
+        if !cannot_overflow(cur) && !step_is_finite(cur, rule)? {
             return Err(Error::NonFinite);
         }
-        // Finite by the check above (the unit tests of `refine` pin both
-        // checks to the values `refine` stores).
-        refine(cur, rule, out)?;
+        // Finite by the check above (the unit tests of `step` pin both
+        // checks to the values `step_into` stores).
+        step_into(cur, rule, out)?;
         self.flip = !self.flip;
         self.level = self.level.saturating_add(1);
         Ok(())
@@ -219,14 +219,14 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         let [a, b] = &mut self.nets;
         let (cur, out) = if self.flip { (&*b, a) } else { (&*a, b) };
         if cannot_overflow(cur) {
-            rule.refine(cur, out)?;
+            rule.step_into(cur, out)?;
         } else {
             // As `step`: decided without writing, with `rule`'s table.
             let table = Rule::Eg(rule.table());
-            if !refines_finite(cur, table)? {
+            if !step_is_finite(cur, table)? {
                 return Err(Error::NonFinite);
             }
-            refine(cur, table, out)?;
+            step_into(cur, table, out)?;
         }
         self.flip = !self.flip;
         self.level = self.level.saturating_add(1);
@@ -388,7 +388,7 @@ impl<R: Real> DNet<R> {
             (None, None) => return Err(Error::ValenceUnsupported { valence: n }),
         };
         let mut next = self.clone();
-        refine(self, rule, &mut next)?;
+        step_into(self, rule, &mut next)?;
         if !next.is_finite() {
             return Err(Error::NonFinite);
         }

@@ -77,7 +77,7 @@ fn regular_stencil(i: usize, j: usize) -> Result<&'static [Term; 9], Error> {
 }
 
 /// One step from `old` into `out` (resized to `old`'s valence, `c0` copied).
-pub(crate) fn refine<R: Real>(
+pub(crate) fn step_into<R: Real>(
     old: &DNet<R>,
     rule: Rule<'_, '_>,
     out: &mut DNet<R>,
@@ -99,15 +99,15 @@ pub(crate) fn refine<R: Real>(
     Ok(())
 }
 
-/// `true` when [`refine`] of `old` would give a finite net: the same
+/// `true` when [`step_into`] of `old` would give a finite net: the same
 /// computation (so bit-identical values), each new node checked and dropped.
-pub(crate) fn refines_finite<R: Real>(old: &DNet<R>, rule: Rule<'_, '_>) -> Result<bool, Error> {
+pub(crate) fn step_is_finite<R: Real>(old: &DNet<R>, rule: Rule<'_, '_>) -> Result<bool, Error> {
     new_nodes(old, rule, &mut |_, _, p| p.is_finite())
 }
 
 /// Computes every node of the step from `old` and hands it to
 /// `emit(sector, node index, value)`; stops early (returning `false`) when
-/// `emit` does. One routine for [`refine`] and [`refines_finite`], so the
+/// `emit` does. One routine for [`step_into`] and [`step_is_finite`], so the
 /// step's pre-check sees exactly the values the step stores.
 fn new_nodes<R: Real>(
     old: &DNet<R>,
@@ -247,11 +247,11 @@ mod tests {
         }
     }
 
-    /// The step's check-first path is exact: `refines_finite` says `true`
-    /// exactly when `refine` gives a finite net, and a net within `MAX/1024`
+    /// The step's check-first path is exact: `step_is_finite` says `true`
+    /// exactly when `step_into` gives a finite net, and a net within `MAX/1024`
     /// never overflows (the bound of `cannot_overflow`).
     #[test]
-    fn finiteness_checks_agree_with_refine() {
+    fn finiteness_checks_agree_with_the_step() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
         // Under Miri (float-heavy, ~10⁴× slower) one net of each amplitude.
         const NETS: usize = if cfg!(miri) { 6 } else { 600 };
@@ -267,8 +267,8 @@ mod tests {
                 None => Rule::Regular,
             };
             let mut out = old.clone();
-            refine(&old, rule, &mut out).unwrap();
-            assert_eq!(refines_finite(&old, rule), Ok(out.is_finite()));
+            step_into(&old, rule, &mut out).unwrap();
+            assert_eq!(step_is_finite(&old, rule), Ok(out.is_finite()));
             if cannot_overflow(&old) {
                 assert!(out.is_finite());
             }
