@@ -18,10 +18,19 @@ Reads <target>/criterion/... (<target> = $CARGO_TARGET_DIR, else target/).
         benches/c2ps_step.rs: per output valence, capdiv's C²PS step per
         output point (f64, f32) against subdiv-kernels' Catmull-Clark
         refinement of the same polar net per output vertex, from one run.
+
+    python3 scripts/bench-table.py header TITLE
+        The header line every section of docs/benchmarks.md starts with:
+        "## TITLE — <CPU model>, <cores> cores, rustc <version>, load
+        average <L>, <date>". L is $BENCH_LOAD when set (the range measured
+        while the benchmark ran), else the current 1-minute load average;
+        the date is today's (UTC).
 """
+import datetime
 import json
 import os
 import pathlib
+import subprocess
 import sys
 
 repo = pathlib.Path(__file__).resolve().parent.parent
@@ -104,8 +113,30 @@ def c2ps_vs_cc(baseline):
         print(f"| {n} | " + " | ".join(cells) + " |")
 
 
+def header(title):
+    model = "unknown CPU"
+    try:
+        for line in pathlib.Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                model = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    try:
+        rustc = subprocess.run(
+            ["rustc", "--version"], capture_output=True, text=True, cwd=repo
+        ).stdout.split()[1]
+    except (OSError, IndexError):
+        rustc = "?"
+    load = os.environ.get("BENCH_LOAD") or f"{os.getloadavg()[0]:.1f}"
+    date = datetime.datetime.now(datetime.timezone.utc).date().isoformat()
+    print(f"## {title} — {model}, {os.cpu_count()} cores, rustc {rustc}, load average {load}, {date}")
+
+
 args = sys.argv[1:]
-if args and args[0] == "eg-vs-cc":
+if args and args[0] == "header":
+    header(" ".join(args[1:]))
+elif args and args[0] == "eg-vs-cc":
     eg_vs_cc(args[1] if len(args) > 1 else "new")
 elif args and args[0] == "c2ps-vs-cc":
     c2ps_vs_cc(args[1] if len(args) > 1 else "new")
