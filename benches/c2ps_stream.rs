@@ -78,7 +78,7 @@ fn probe_in_place<R: Real>(
     let mut net = PolarNetBuf::new_in(pole, links, SliceStorage::new(ls, rs)).unwrap();
     let mut count = 0;
     for level in 0..=depth {
-        for p in net.ring_patches().unwrap() {
+        for p in net.ring_patches() {
             consume(&p);
             count += 1;
         }

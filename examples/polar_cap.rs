@@ -23,7 +23,7 @@ fn main() -> Result<(), Error> {
     let mut net: PolarNet<f64, 512> = PolarNet::new([0.0, 0.0, 0.0], &links)?;
     let mut patches = 0;
     for _ in 0..6 {
-        patches += net.ring_patches()?.count();
+        patches += net.ring_patches().count();
         net.step(FirstStep::Uniform)?;
     }
     let jet = PoleJet::of(&net);

@@ -41,7 +41,7 @@
 //! net.step(FirstStep::Uniform)?;
 //! net.step(FirstStep::Uniform)?;
 //! assert_eq!(net.valence(), 32);
-//! assert_eq!(net.ring_patches()?.count(), 2 * 32);
+//! assert_eq!(net.ring_patches().count(), 2 * 32);
 //! // A third step would need valence 64: a typed error, the net unchanged.
 //! assert!(net.step(FirstStep::Uniform).is_err());
 //!

@@ -1,5 +1,6 @@
 //! `Point3`: a point or vector in 3-space, the unit every net stores.
 
+use crate::error::Error;
 use crate::real::Real;
 use core::ops::{Add, AddAssign, Mul, Neg, Sub};
 
@@ -21,6 +22,17 @@ impl<R: Real> Point3<R> {
     #[inline]
     pub fn is_finite(&self) -> bool {
         self.0.iter().all(|c| c.is_finite())
+    }
+    /// The point, or [`Error::NonFinite`] when a coordinate is not finite:
+    /// the one check of a computed limit, as [`crate::PoleJet::finite`] is
+    /// of a jet (`cap.limit().finite()?`).
+    #[inline]
+    pub fn finite(self) -> Result<Self, Error> {
+        if self.is_finite() {
+            Ok(self)
+        } else {
+            Err(Error::NonFinite)
+        }
     }
     /// Dot product.
     #[inline]

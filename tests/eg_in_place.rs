@@ -34,7 +34,7 @@ fn state<R: Real>(s: &EgSubdivision<'static, R>) -> State<R> {
     State {
         valence: s.valence(),
         level: s.level(),
-        c0: s.c0().0,
+        c0: s.limit().0,
         net: (s.valence() > 0).then(|| s.net().clone()),
         previous: s.previous().cloned(),
         ring: s.ring_patches().collect(),
@@ -155,7 +155,7 @@ fn reset_equals_new_and_steps_equal_the_refined_chain() {
             assert_eq!(sub.level(), m);
             assert_eq!(bits(sub.net()), bits(&chain[m as usize]));
             assert_eq!(bits(sub.previous().unwrap()), bits(&chain[m as usize - 1]));
-            assert_eq!(sub.c0(), c.limit());
+            assert_eq!(sub.limit(), c.limit());
             assert_eq!(state(&sub), state(&fresh));
         }
     }

@@ -58,12 +58,12 @@ proptest! {
         let ext = ExtNet::random(n, &mut rng, 0.5);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
         let mut sub = EgSubdivision::new(&c, None).unwrap();
-        let c0 = sub.c0();
+        let c0 = sub.limit();
         prop_assert_eq!(c0, c.limit());
         // Under Miri (an EG step takes seconds there) two steps.
         for _ in 0..if cfg!(miri) { 2 } else { 6 } {
             sub.step().unwrap();
-            prop_assert_eq!(sub.c0(), c0);
+            prop_assert_eq!(sub.limit(), c0);
             prop_assert_eq!(sub.net().c0(), c0);
         }
     }
@@ -110,7 +110,7 @@ fn contraction_rate_is_the_spec_lambda() {
         let ext = ExtNet::random(n, &mut rng, 0.7);
         let c = CNet::new(ext.center, &ext.cnet_nodes()).unwrap();
         let mut sub = EgSubdivision::new(&c, None).unwrap();
-        let c0 = sub.c0();
+        let c0 = sub.limit();
         let dist = |s: &EgSubdivision<f64>| {
             s.net()
                 .sectors()

@@ -29,7 +29,7 @@ fn worst_relative_by(ext: &ExtNet, steps: usize, fourier: bool) -> f64 {
     let mut a = EgSubdivision::new(&c64, None).unwrap();
     let mut b = EgSubdivision::new(&c32, None).unwrap();
     let rule = b.table().map(|t| FourierRule::new(t).unwrap());
-    let mut worst = a.c0().max_abs_diff(b.c0().cast());
+    let mut worst = a.limit().max_abs_diff(b.limit().cast());
     for _ in 0..steps {
         a.step().unwrap();
         match (&rule, fourier) {

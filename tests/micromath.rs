@@ -61,8 +61,8 @@ fn deviations() -> (f64, f64, f64) {
             for k in 0..2 {
                 dk = dk.max((ga.principal[k] - gb.principal[k] as f64).abs() / scale);
             }
-            let pa = a.ring_patch(0, 1).unwrap().normal(0.5, 0.5).unwrap();
-            let pb = b.ring_patch(0, 1).unwrap().normal(0.5, 0.5).unwrap();
+            let pa = a.ring_patch(1).unwrap().normal(0.5, 0.5).unwrap();
+            let pb = b.ring_patch(1).unwrap().normal(0.5, 0.5).unwrap();
             dp = dp.max(pa.max_abs_diff(pb.cast()));
         }
     }

@@ -56,7 +56,7 @@ fn outer_region_joins_level0_ring_c2() {
     let net: PolarNet<f64, 64> = PolarNet::new([0.0; 3], &links).unwrap();
     let region = OuterRegion::new([0.0; 3], &links).unwrap();
     for col in 0..5 {
-        let inner = net.ring_patch(1, col).unwrap().points;
+        let inner = net.ring_patch(net.valence() + col).unwrap().points;
         let outer = region.patch(col).unwrap().points;
         for j in 0..4 {
             let (a0, a1, a2) = (inner[3][j], inner[2][j], inner[1][j]);

@@ -84,10 +84,7 @@ fn in_place<R: Real>(
     let jet = PoleJet::of(&net);
     let mut rings = Vec::new();
     for level in 0..=depth {
-        rings.push(match net.ring_patches() {
-            Ok(r) => r.collect(),
-            Err(_) => Vec::new(),
-        });
+        rings.push(net.ring_patches().collect());
         if level < depth {
             net.step(first).unwrap();
         }

@@ -245,7 +245,7 @@ impl PolarJob<'_> {
         for level in 0..=self.depth {
             if net.links_held() >= 5 {
                 let cols = net.valence();
-                for (k, p) in net.ring_patches().map_err(kernel)?.enumerate() {
+                for (k, p) in net.ring_patches().enumerate() {
                     let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);
                     patches.push(ShapePatch::ring(
                         PatchGeometry::Cubic(p),
@@ -287,7 +287,7 @@ impl PolarJob<'_> {
 fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     let mut sub = subdivision::<f64>(name, input, None)?;
     let kernel = |e| CliError::kernel(name, e);
-    let hole_point = sub.c0().0;
+    let hole_point = sub.limit().0;
     let mut patches = Vec::new();
     for level in 1..=depth {
         sub.step().map_err(kernel)?;
@@ -323,7 +323,7 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     let nodes: Vec<[f64; 3]> = input.sectors.iter().flatten().copied().collect();
     let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(n)];
     let mut cap = CcCap::new(input.center, &nodes, &mut storage).map_err(kernel)?;
-    let hole_point = cap.try_limit().map_err(kernel)?.0;
+    let hole_point = cap.limit().finite().map_err(kernel)?.0;
     let mut patches = Vec::new();
     for level in 1..=depth {
         cap.step().map_err(kernel)?;

@@ -73,7 +73,7 @@ fn inner_edge() {
             let n = net.valence();
             let mut worst = 0.0f64;
             for c in 0..n {
-                let p = net.ring_patch(0, c).unwrap();
+                let p = net.ring_patch(c).unwrap();
                 for b in 0..=4 {
                     let g = p.jet(0.0, b as f64 / 4.0).unwrap().geometry().unwrap();
                     worst = worst

@@ -79,7 +79,7 @@ fn json_equals_the_kernel_bit_for_bit() {
     }
     let mut net: PolarNet<f64, 1024> = PolarNet::new(pole, &links).unwrap();
     for m in 0..=2 {
-        for p in net.ring_patches().unwrap() {
+        for p in net.ring_patches() {
             want.extend(p.points.iter().flatten().map(|q| q.0));
         }
         if m < 2 {

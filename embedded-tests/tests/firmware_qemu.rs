@@ -68,7 +68,7 @@ fn ring_magnitudes(depth: u32) -> [f64; 3] {
         net.step(FirstStep::Uniform).unwrap();
     }
     let mut sum = [0.0; 3];
-    for patch in net.ring_patches().unwrap() {
+    for patch in net.ring_patches() {
         let x = patch.position(0.5, 0.5).unwrap();
         for (s, c) in sum.iter_mut().zip(x.0) {
             *s += c.abs();
@@ -108,7 +108,7 @@ fn c2ps_reference(depth: u32, add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     }
     for (span, col, ui, vi) in [(0, 0, 2, 2), (1, n - 1, 1, 3), (0, n / 3, 4, 0)] {
         let e = net
-            .ring_patch(span, col)
+            .ring_patch(span * n + col)
             .unwrap()
             .evaluate(quarter(ui), quarter(vi))
             .unwrap();
@@ -120,7 +120,7 @@ fn c2ps_reference(depth: u32, add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
     }
     let mut sum = Point3::ZERO;
     let mut count = 0;
-    for patch in net.ring_patches().unwrap() {
+    for patch in net.ring_patches() {
         sum += patch.position(0.5, 0.5).unwrap();
         count += 1;
     }
@@ -165,7 +165,7 @@ fn eg_reference(add: &mut impl FnMut(&str, &[usize], Vec<f64>)) {
         for _ in 0..EG_STEPS {
             sub.step().unwrap();
         }
-        add("egc0", &[n], p(sub.c0()));
+        add("egc0", &[n], p(sub.limit()));
         for s in 0..n {
             for (i, j) in [(0, 0), (3, 0), (1, 1), (3, 2)] {
                 add("egnode", &[n, s, i, j], p(sub.net().node(s, i, j).unwrap()));

@@ -74,7 +74,7 @@ fn reference() -> BTreeMap<String, Entry> {
         let n = net.valence();
         let mut weighted = Point3::ZERO;
         let mut count = 0usize;
-        for (i, patch) in net.ring_patches().unwrap().enumerate() {
+        for (i, patch) in net.ring_patches().enumerate() {
             let column = i % n;
             let mut s = Point3::ZERO;
             for q in patch.points.iter().flatten() {

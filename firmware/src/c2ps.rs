@@ -116,7 +116,7 @@ fn quarter(i: usize) -> f32 {
 fn ring(net: &Net) -> Result<(), Failure> {
     let n = net.valence();
     for (span, col, ui, vi) in [(0, 0, 2, 2), (1, n - 1, 1, 3), (0, n / 3, 4, 0)] {
-        let patch = net.ring_patch(span, col)?;
+        let patch = net.ring_patch(span * n + col)?;
         let e = patch.evaluate(quarter(ui), quarter(vi))?;
         point("ringpos", &[span, col, ui, vi], e.position);
         point("ringdu", &[span, col, ui, vi], e.du);
@@ -125,7 +125,7 @@ fn ring(net: &Net) -> Result<(), Failure> {
     }
     let mut sum = capdiv::Point3::ZERO;
     let mut count = 0usize;
-    for patch in net.ring_patches()? {
+    for patch in net.ring_patches() {
         sum += patch.position(0.5, 0.5)?;
         count += 1;
     }

@@ -66,7 +66,7 @@ fn one(net: &CNet<f32>, sub: &mut Sub) -> Result<(), Failure> {
     for _ in 0..STEPS {
         sub.step()?;
     }
-    point("egc0", &[n], sub.c0());
+    point("egc0", &[n], sub.limit());
     let d = sub.net();
     for s in 0..n {
         for (i, j) in [(0, 0), (3, 0), (1, 1), (3, 2)] {

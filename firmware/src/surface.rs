@@ -97,8 +97,8 @@ mod c2ps {
             let _ = black_box(net.step(black_box(FirstStep::Plain)));
             let _ = black_box(net.rts_step());
             let _ = black_box(net.link(black_box(2)));
-            let _ = black_box(net.ring_patch(black_box(1), black_box(2)));
-            for patch in net.ring_patches().into_iter().flatten() {
+            let _ = black_box(net.ring_patch(black_box(1)));
+            for patch in net.ring_patches() {
                 black_box(patch);
             }
             let jet = PoleJet::of(&net);
@@ -172,7 +172,7 @@ mod eg {
                 for patch in sub.ring_patches() {
                     black_box(patch);
                 }
-                black_box((sub.c0(), sub.level(), sub.net(), sub.previous()));
+                black_box((sub.limit(), sub.level(), sub.net(), sub.previous()));
             }
         }
         let flat_store = [R::ZERO; 360];

@@ -103,7 +103,7 @@ fn run<R: FuzzReal>(u: &mut Unstructured<'_>) -> Result<()> {
         .expect("stream accepted it");
     let mut rings: Vec<Vec<BicubicPatch<R>>> = Vec::new();
     for level in 0..=depth {
-        rings.push(net.ring_patches().map(|r| r.collect()).unwrap_or_default());
+        rings.push(net.ring_patches().collect());
         if level < depth && net.step(first).is_err() {
             break;
         }

@@ -21,7 +21,7 @@ fn first_step() -> impl Strategy<Value = FirstStep> {
 }
 
 fn kernel_patch(net: &Net, span: usize, col: usize) -> Patch<4> {
-    net.ring_patch(span, col)
+    net.ring_patch(span * net.valence() + col)
         .expect("5 links")
         .points
         .map(|row| row.map(|p| p.0))
@@ -47,7 +47,7 @@ fn columns(n: usize) -> impl Iterator<Item = usize> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
 
-    /// `ring_patch(span, col)` is the bicubic Bézier form of the B-spline
+    /// `ring_patch(span·N + col)` is the bicubic Bézier form of the B-spline
     /// with control points `q[span+1+k][col−1+l]`, at every level with 5 links.
     /// Tolerance 1e-14 · size: both sides are one 16-term weighted sum.
     #[test]
@@ -59,7 +59,7 @@ proptest! {
         let size = cfg.max_abs();
         for net in levels(&cfg, depth, first) {
             if net.links_held() < 5 {
-                prop_assert!(net.ring_patch(0, 0).is_err());
+                prop_assert!(net.ring_patch(0).is_err());
                 continue;
             }
             let q = from_net(&net);

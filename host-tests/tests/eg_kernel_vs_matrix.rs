@@ -72,7 +72,7 @@ fn deviation_by(
                 }
             }
         }
-        worst = worst.max((eg.c0().0[k] - y[12 * n]).abs());
+        worst = worst.max((eg.limit().0[k] - y[12 * n]).abs());
     }
     worst / size.max(1e-300)
 }

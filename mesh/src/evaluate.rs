@@ -523,7 +523,7 @@ impl<R: Real> Scratch<R> {
                 let mut radius = 0.0f64;
                 if self.hole_tolerance.is_some() {
                     for c in 0..cols {
-                        let inner = net.ring_patch(0, c).map_err(kernel)?;
+                        let inner = net.ring_patch(c).map_err(kernel)?;
                         radius = radius.max(hole::edge_radius(&inner, hole::EDGE_U0, limit));
                     }
                 }
@@ -535,7 +535,7 @@ impl<R: Real> Scratch<R> {
             for span in 0..2 {
                 let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
                 for c in 0..cols {
-                    let patch = net.ring_patch(span, c).map_err(kernel)?;
+                    let patch = net.ring_patch(span * cols + c).map_err(kernel)?;
                     let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
                     let (v0, v1) = (
                         ((c % per) as f64) / per as f64,
@@ -771,7 +771,7 @@ where
         face: e.face,
         error,
     };
-    let limit = eg.c0();
+    let limit = eg.limit();
     let mut normal_sum = Point3::ZERO;
     let mut rings = 0;
     for m in 1..=depth {

@@ -801,7 +801,7 @@ fn c2ps_cap_rings_weld_into_a_disk() {
         let last = level + 1 == levels;
         let valence = net.valence();
         let limit = PoleJet::of(&net).limit();
-        for (k, b) in net.ring_patches().unwrap().enumerate() {
+        for (k, b) in net.ring_patches().enumerate() {
             let mut t = TessPatch::new(PatchGeometry::Cubic(b), level as u32);
             if k < valence {
                 // Span 0: its inner edge u = 0 faces the next ring, or the hole.

@@ -17,6 +17,7 @@ use crate::error::Error;
 use crate::point::Point3;
 use crate::polar::index::{at, next_mod, put};
 use crate::real::Real;
+use core::iter::FusedIterator;
 
 /// Points per sector of the kept extended ring (`x ∈ 1..=3`, `y ∈ 0..=3`).
 pub const EXT_SECTOR: usize = 12;
@@ -295,9 +296,9 @@ impl<'s, R: Real> CcCap<'s, R> {
     }
 }
 
-/// Iterator over the patches of a [`CcCap`]'s last ring:
-/// [`CcCap::ring_patches`].
-#[derive(Debug)]
+/// Iterator over the patches of a [`CcCap`]'s last ring, in ring order
+/// (`k = 3·sector + piece`): [`CcCap::ring_patches`].
+#[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CcRingPatches<'a, 's, R> {
     cap: &'a CcCap<'s, R>,
@@ -321,3 +322,5 @@ impl<R: Real> Iterator for CcRingPatches<'_, '_, R> {
 }
 
 impl<R: Real> ExactSizeIterator for CcRingPatches<'_, '_, R> {}
+
+impl<R: Real> FusedIterator for CcRingPatches<'_, '_, R> {}

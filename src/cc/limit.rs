@@ -30,6 +30,11 @@ impl<R: Real> CcCap<'_, R> {
     /// `(n² e + 4 Σ (1,0)_s + Σ (1,1)_s) / (n(n+5))`, written as
     /// `e + Σ w (c − e)` (the weights sum to 1; exact for translations).
     /// The same at every level.
+    ///
+    /// Not checked: it overflows only for nets with coordinates of opposite
+    /// signs near `MAX/2` (`c − e` is formed first); [`Point3::finite`]
+    /// checks (`cap.limit().finite()?`, [`Error::NonFinite`]), as
+    /// [`crate::PoleJet::finite`] does for C²PS.
     pub fn limit(&self) -> Point3<R> {
         let nf = self.n as f64;
         let w6 = R::from_f64(4.0 / (nf * (nf + 5.0)));
@@ -40,18 +45,6 @@ impl<R: Real> CcCap<'_, R> {
             acc += (self.c(s, 1, 0) - e) * w6 + (self.c(s, 1, 1) - e) * w5;
         }
         e + acc
-    }
-
-    /// [`CcCap::limit`], or [`Error::NonFinite`] when it overflows (only
-    /// possible for nets with coordinates of opposite signs near `MAX/2`:
-    /// `c − e` is formed first).
-    pub fn try_limit(&self) -> Result<Point3<R>, Error> {
-        let p = self.limit();
-        if p.is_finite() {
-            Ok(p)
-        } else {
-            Err(Error::NonFinite)
-        }
     }
 
     /// The limit tangents `(t1, t2)` at the center (module doc): `t1` along

@@ -36,7 +36,7 @@
 //!         assert!(normal.0[2] > 0.0 && domain.size > 0.0);
 //!     }
 //! }
-//! assert_eq!(eg.c0(), net.limit()); // c0 by (3), fixed for all steps
+//! assert_eq!(eg.limit(), net.limit()); // c0 by (3), fixed for all steps
 //! # Ok::<(), capdiv::Error>(())
 //! ```
 

@@ -10,6 +10,7 @@ use crate::bezier::BiquarticPatch;
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
+use core::iter::FusedIterator;
 
 /// An EG subdivision in progress (docs/math/eg.md §5–§9).
 ///
@@ -243,9 +244,12 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     pub fn previous(&self) -> Option<&DNet<R>> {
         (self.level > 0).then_some(self.pair().1)
     }
-    /// The limit point `c0` (§4), fixed for all steps.
+    /// The limit point at the center, `c0` (§4), fixed for all steps. Always
+    /// finite ([`EgSubdivision::new`] checks the net, and a step that would
+    /// overflow is refused), so it needs no [`Point3::finite`] check, unlike
+    /// [`crate::CcCap::limit`] and [`crate::PoleJet`].
     #[inline]
-    pub fn c0(&self) -> Point3<R> {
+    pub fn limit(&self) -> Point3<R> {
         self.net().c0
     }
     /// The valence.
@@ -341,7 +345,8 @@ impl PatchDomain {
     }
 }
 
-/// Iterator over the last ring's patches ([`EgSubdivision::ring_patches`]).
+/// Iterator over the last ring's patches, in ring order (`k = 3·sector +
+/// piece`): [`EgSubdivision::ring_patches`].
 /// Faster than [`EgSubdivision::ring_patch`] for every `k` (it shares the
 /// regular nodes of a sector's 3 patches, 18 points of scratch), same patches.
 #[derive(Clone, Debug)]
@@ -371,6 +376,8 @@ impl<R: Real> Iterator for EgRingPatches<'_, '_, R> {
 }
 
 impl<R: Real> ExactSizeIterator for EgRingPatches<'_, '_, R> {}
+
+impl<R: Real> FusedIterator for EgRingPatches<'_, '_, R> {}
 
 impl<R: Real> DNet<R> {
     /// One step of this net, returned as a new net (stateless form of

@@ -22,6 +22,6 @@ mod stream_level;
 pub use jet::{PoleGeometry, PoleJet};
 pub use net::{FirstStep, PolarNet, PolarNetBuf, PolarNetInner, MAX_STORED_LINKS};
 pub use outer::OuterRegion;
-pub use ring::RingPatches;
+pub use ring::PolarRingPatches;
 pub use storage::{capacity_for, ArrayStorage, NetStorage, SliceStorage};
 pub use stream::{PolarStream, StreamOptions, StreamedPatch, Sweep};

@@ -22,7 +22,7 @@
 //! nets of any capacities), so every storage gives the same numbers bit for
 //! bit.
 
-use super::ring::{Ring, RingPatches};
+use super::ring::{PolarRingPatches, Ring};
 use super::rts::rts_step;
 use super::step::c2ps_step;
 use super::storage::{ArrayStorage, NetStorage, SliceStorage};
@@ -399,25 +399,50 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
         rts_step(&mut self.head, self.storage.parts_mut())
     }
 
-    /// Number of patches in the current ring, `2N`.
+    /// Number of patches in the current ring: `2N` once the net holds 5
+    /// links (§5), 0 before (a net built from 2 links has its first ring
+    /// after 2 steps).
     #[inline]
     pub fn ring_len(&self) -> usize {
-        2 * self.head.valence
+        self.view().ring().map_or(0, |r| r.len())
     }
 
-    /// Patch `(span, column)` of the current ring (§5), `span ∈ {0, 1}`,
-    /// `column < N`. Needs all 5 links ([`Error::NotEnoughLinks`]);
-    /// [`Error::OutOfDomain`] for an index outside the ring.
+    /// Patch `k` of the current ring (§5), `k < ring_len()`, in ring order:
+    /// span `k / N` (0: `r ∈ [2, 3]`, 1: `r ∈ [3, 4]` in level-m link
+    /// units), column `k % N` (`τ ∈ [column/N, (column+1)/N]`); `u` runs
+    /// outward, `v` counter-clockwise. [`Error::NotEnoughLinks`] while the
+    /// net holds fewer than 5 links, [`Error::OutOfDomain`] for
+    /// `k ≥ ring_len()`.
+    ///
+    /// ```
+    /// use capdiv::{PolarNet, Point3};
+    /// // Valence 4, 5 flat links on circles of radius 1..5.
+    /// let ring = |r: f64| [[r, 0.0, 0.0], [0.0, r, 0.0], [-r, 0.0, 0.0], [0.0, -r, 0.0]];
+    /// let links = [ring(1.0), ring(2.0), ring(3.0), ring(4.0), ring(5.0)];
+    /// let net: PolarNet<f64, 4> = PolarNet::new([0.0; 3], &links)?;
+    /// assert_eq!(net.ring_len(), 2 * 4);
+    /// // Patch 1 is span 0, column 1: its corner b00 is the B-spline's value
+    /// // at link 2, column 1, the (1, 4, 1)/6 average over links 1..3 and
+    /// // columns 0..2: (0, 4/3, 0).
+    /// let corner = net.ring_patch(1)?.points[0][0];
+    /// assert!(corner.max_abs_diff(Point3([0.0, 4.0 / 3.0, 0.0])) < 1e-15);
+    /// assert!(net.ring_patch(net.ring_len()).is_err());
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     #[inline]
-    pub fn ring_patch(&self, span: usize, column: usize) -> Result<BicubicPatch<R>, Error> {
-        self.view().ring()?.patch(span, column)
+    pub fn ring_patch(&self, k: usize) -> Result<BicubicPatch<R>, Error> {
+        self.view().ring()?.patch(k)
     }
 
-    /// All `2N` patches of the current ring: span 0 (columns 0..N), then
-    /// span 1. [`Error::NotEnoughLinks`] below 5 links.
+    /// All [`Self::ring_len`] patches of the current ring, in ring order
+    /// ([`Self::ring_patch`]: span 0 columns `0..N`, then span 1); none
+    /// while the net holds fewer than 5 links.
     #[inline]
-    pub fn ring_patches(&self) -> Result<RingPatches<'_, R>, Error> {
-        Ok(self.view().ring()?.patches())
+    pub fn ring_patches(&self) -> PolarRingPatches<'_, R> {
+        match self.view().ring() {
+            Ok(ring) => ring.patches(),
+            Err(_) => PolarRingPatches::empty(),
+        }
     }
 }
 

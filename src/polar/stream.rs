@@ -84,8 +84,8 @@ impl StreamOptions {
     }
 }
 
-/// One patch delivered by a sweep: [`PolarNetInner::ring_patch`]`(span, column)`
-/// of level `level` (its `u` runs outward over `r ∈ [2+span, 3+span]` in
+/// One patch delivered by a sweep: [`PolarNetInner::ring_patch`]`(k)` of
+/// level `level`, `k = span·N + column` ([`Self::ring_index`]; its `u` runs outward over `r ∈ [2+span, 3+span]` in
 /// level-`level` link units, its `v` counter-clockwise over
 /// `τ ∈ [column/N, (column+1)/N]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,8 +104,8 @@ pub struct StreamedPatch<R> {
 }
 
 impl<R> StreamedPatch<R> {
-    /// Its position in [`PolarNetInner::ring_patches`] of its level:
-    /// `span·N + column`.
+    /// Its index `k` in its level's ring ([`PolarNetInner::ring_patch`],
+    /// [`PolarNetInner::ring_patches`]): `span·N + column`.
     #[inline]
     pub fn ring_index(&self) -> usize {
         usize::from(self.span) * self.valence + self.column

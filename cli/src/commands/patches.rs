@@ -429,7 +429,7 @@ impl<R: Scalar> Job<'_, R> {
         let mut rings = Vec::new();
         for level in 0..=self.depth {
             if net.links_held() >= 5 {
-                let ring = net.ring_patches().map_err(kernel)?;
+                let ring = net.ring_patches();
                 rings.push((level, ring.len()));
                 patches.extend(ring.map(|patch| LeveledPatch { level, patch }));
             }
