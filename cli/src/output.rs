@@ -8,7 +8,7 @@
 
 use crate::error::CliError;
 use crate::Scalar;
-use capdiv::{DNet, Point3, PolarNetBuf, PoleGeometry, PoleJet, TensorPatch};
+use capdiv::{DNet, NetStorage, Point3, PolarNetInner, PoleGeometry, PoleJet, TensorPatch};
 use serde::Serialize;
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -42,7 +42,7 @@ pub struct PolarOutput<R> {
 
 impl<R: Scalar> PolarOutput<R> {
     /// The configuration a net holds at its current level.
-    pub fn of(net: &PolarNetBuf<'_, R>) -> Self {
+    pub fn of<S: NetStorage<R>>(net: &PolarNetInner<R, S>) -> Self {
         let links = (1..=net.links_held())
             .filter_map(|i| net.link(i))
             .map(|l| l.iter().map(|p| p.0).collect())

@@ -24,7 +24,7 @@ use crate::commands::polar::Config;
 use crate::commands::surface::check_size;
 use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
-use crate::net::{valence_after, NetStorage};
+use crate::net::{valence_after, HeapStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout, TessPatch};
 use capdiv_mesh::{
@@ -211,7 +211,7 @@ fn polar(name: &str, input: &PolarInput, depth: u32, rts: bool) -> Result<Shape,
         depth,
         rts,
     }
-    .run(NetStorage::for_valence(needed, || {
+    .run(HeapStorage::for_valence(needed, || {
         format!("valence n·2^M = {n}·2^{depth}")
     })?)
 }
@@ -224,7 +224,7 @@ struct PolarJob<'a> {
 }
 
 impl PolarJob<'_> {
-    fn run(self, mut storage: NetStorage<f64>) -> Result<Shape, CliError> {
+    fn run(self, storage: HeapStorage<f64>) -> Result<Shape, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let (pole, links) = (self.config.pole, &self.config.links);
         let mut net = storage.net(pole, links).map_err(kernel)?;

@@ -16,7 +16,8 @@
 //! [`ArrayStorage<R, CAP>`] holds both inline (a `static`, a `Box`, the
 //! stack); [`SliceStorage`] borrows them from the caller (a `Vec`, a
 //! `Box<[_]>`, part of a work buffer), for a capacity chosen at run time. Any
-//! other type may implement [`NetStorage`] (a net that owns heap storage, say).
+//! other type may implement [`NetStorage`] (a net that owns heap storage, say:
+//! the CLI's `HeapStorage`).
 //! Every operation of the net runs the same code over the two slices, compiled
 //! once per scalar type whatever the storage, so all storages give the same
 //! numbers bit for bit.

@@ -43,7 +43,7 @@ use crate::args::{FirstStepArg, PatchFormat, PatchesArgs, Precision};
 use crate::camera::Up;
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
-use crate::net::{valence_after, NetStorage};
+use crate::net::{valence_after, HeapStorage};
 use crate::output::{indent, temporary_sibling, to_json, LeveledPatch, PatchOutput, Sink, Target};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
@@ -401,7 +401,7 @@ pub fn collect<R: Scalar>(
         depth,
         first,
     }
-    .run(NetStorage::for_valence(valence_after(n, depth), || {
+    .run(HeapStorage::for_valence(valence_after(n, depth), || {
         format!("valence n·2^M = {n}·2^{depth}")
     })?)?;
     check_finite(name, set)
@@ -416,7 +416,7 @@ struct Job<'a, R> {
 }
 
 impl<R: Scalar> Job<'_, R> {
-    fn run(self, mut storage: NetStorage<R>) -> Result<PatchSet<R, 4>, CliError> {
+    fn run(self, storage: HeapStorage<R>) -> Result<PatchSet<R, 4>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let (pole, links) = (self.config.pole, &self.config.links);
         let mut net = storage.net(pole, links).map_err(kernel)?;

@@ -14,7 +14,7 @@ use super::Outcome;
 use crate::args::{PoleArgs, Precision};
 use crate::error::CliError;
 use crate::input::{Input, PolarInput, Source};
-use crate::net::NetStorage;
+use crate::net::HeapStorage;
 use crate::output::{to_json, EgPoleOutput, PoleOutput, Sink};
 use crate::Scalar;
 use capdiv::PoleJet;
@@ -67,7 +67,9 @@ pub fn pole<R: Scalar>(name: &str, input: &PolarInput) -> Result<PoleOutput<R>, 
         name,
         config: &config,
     }
-    .run(NetStorage::for_valence(Some(n), || format!("valence {n}"))?)?;
+    .run(HeapStorage::for_valence(Some(n), || {
+        format!("valence {n}")
+    })?)?;
     if !out.is_finite() {
         return Err(CliError::NonFiniteResult {
             source: name.to_string(),
@@ -82,7 +84,7 @@ struct Job<'a, R> {
 }
 
 impl<R: Scalar> Job<'_, R> {
-    fn run(self, mut storage: NetStorage<R>) -> Result<PoleOutput<R>, CliError> {
+    fn run(self, storage: HeapStorage<R>) -> Result<PoleOutput<R>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let net = storage
             .net(self.config.pole, &self.config.links)

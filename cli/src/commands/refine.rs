@@ -17,7 +17,7 @@ use super::Outcome;
 use crate::args::{FirstStepArg, Precision, RefineArgs, Scheme};
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
-use crate::net::{valence_after, NetStorage};
+use crate::net::{valence_after, HeapStorage};
 use crate::output::{to_json, DnetOutput, PolarOutput, Sink};
 use crate::table::Table;
 use crate::Scalar;
@@ -143,7 +143,7 @@ pub fn refine<R: Scalar>(
         steps,
         first,
     }
-    .run(NetStorage::for_valence(needed, || {
+    .run(HeapStorage::for_valence(needed, || {
         format!("valence n·2^M = {n}·2^{steps}")
     })?)?;
     if !out.is_finite() {
@@ -163,7 +163,7 @@ struct Job<'a, R> {
 }
 
 impl<R: Scalar> Job<'_, R> {
-    fn run(self, mut storage: NetStorage<R>) -> Result<PolarOutput<R>, CliError> {
+    fn run(self, storage: HeapStorage<R>) -> Result<PolarOutput<R>, CliError> {
         let kernel = |e| CliError::kernel(self.name, e);
         let mut net = storage
             .net(self.config.pole, &self.config.links)
