@@ -28,7 +28,8 @@ use crate::raster::{downsample, ZBuffer};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
-use capdiv_mesh::tessellate::{Face, TessPatch};
+use capdiv_mesh::tessellate::Face;
+use capdiv_mesh::PatchRecord;
 use capdiv_mesh::PatchUv;
 
 /// What is drawn.
@@ -79,10 +80,12 @@ fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
         corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
         hole: HOLE_UV,
     };
-    let patches = shape.patches.iter().enumerate().map(|(k, sp)| TessPatch {
-        tag: k as u32,
-        uv: Some(square),
-        ..sp.patch
+    let patches = shape.patches.iter().enumerate().map(|(k, sp)| {
+        let record = PatchRecord {
+            uv: Some(square),
+            ..sp.patch.clone()
+        };
+        (record, k as u32)
     });
     let t = capdiv_mesh::tessellate::tessellate(patches, grid, 0.0);
     let mut tris = Vec::with_capacity(2 * t.faces.len());

@@ -26,17 +26,19 @@ use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, HeapStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
-use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout, TessPatch};
+use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
 use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
+    CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan,
+    SurfaceSink,
 };
 
 /// One patch of a [`Shape`].
 #[derive(Clone, Debug)]
 pub struct ShapePatch {
     /// The Bézier patch with its finer and hole edges and the limit point
-    /// the hole closes to, as the tessellator takes it (tagged by level).
-    pub patch: TessPatch<f64>,
+    /// the hole closes to, as the evaluator gives it and the tessellator
+    /// takes it.
+    pub patch: PatchRecord<f64>,
     /// Ring level (C²PS/RTS: the level of the ring, 0 for the outer region;
     /// EG/CC: the step that emitted it; meshes: the patch's level).
     pub level: u32,
@@ -50,6 +52,7 @@ impl ShapePatch {
     /// ([`ring_inner_edges`]): finer on every ring but the last, whose
     /// `inner` edges border the hole closed to `hole_point`.
     fn ring(
+        kind: PatchKind,
         geometry: PatchGeometry<f64>,
         level: u32,
         ring: bool,
@@ -58,11 +61,12 @@ impl ShapePatch {
     ) -> Self {
         let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
         ShapePatch {
-            patch: TessPatch {
+            patch: PatchRecord {
+                level,
                 finer,
                 hole,
                 hole_point: Point3(hole_point),
-                ..TessPatch::new(geometry, level)
+                ..PatchRecord::new(kind, geometry)
             },
             level,
             ring,
@@ -240,7 +244,16 @@ impl PolarJob<'_> {
         let outer = OuterRegion::new(pole, links).map_err(kernel)?;
         let mut patches: Vec<ShapePatch> = outer
             .patches()
-            .map(|p| ShapePatch::ring(PatchGeometry::Cubic(p), 0, false, (0, false), hole_point))
+            .map(|p| {
+                ShapePatch::ring(
+                    PatchKind::Polar,
+                    PatchGeometry::Cubic(p),
+                    0,
+                    false,
+                    (0, false),
+                    hole_point,
+                )
+            })
             .collect();
         for level in 0..=self.depth {
             if net.links_held() >= 5 {
@@ -248,6 +261,7 @@ impl PolarJob<'_> {
                 for (k, p) in net.ring_patches().enumerate() {
                     let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);
                     patches.push(ShapePatch::ring(
+                        PatchKind::Polar,
                         PatchGeometry::Cubic(p),
                         level,
                         true,
@@ -294,6 +308,7 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
         for (k, p) in sub.ring_patches().enumerate() {
             let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
             patches.push(ShapePatch::ring(
+                PatchKind::Eg,
                 PatchGeometry::Quartic(p),
                 level,
                 true,
@@ -330,6 +345,7 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
         for (k, p) in cap.ring_patches().enumerate() {
             let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
             patches.push(ShapePatch::ring(
+                PatchKind::CatmullClark,
                 PatchGeometry::Cubic(p),
                 level,
                 true,
@@ -471,7 +487,7 @@ fn mesh_shape(
                 p.level
             };
             ShapePatch {
-                patch: TessPatch::of_record(p, level),
+                patch: p.clone(),
                 level,
                 ring,
             }

@@ -29,7 +29,7 @@ use arbitrary::{Result, Unstructured};
 use capdiv::Point3;
 use capdiv_fuzz::FuzzReal;
 use capdiv_mesh::obj::parse_obj;
-use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry, TessPatch};
+use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry};
 use capdiv_mesh::{
     samples, BoundaryInterpolation, CapRecord, CreaseMethod, EdgeCrease, EvalError, Evaluator,
     MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology, TriangleSubdivision,
@@ -120,9 +120,7 @@ fn evaluate<R: FuzzReal>(
         return None;
     }
     let t = tessellate(
-        sink.patches
-            .iter()
-            .map(|p| TessPatch::of_record(p, p.level)),
+        sink.patches.iter().map(|p| (p, p.level)),
         grid,
         // Relative to the mesh's size, as the CLI welds (an absolute
         // tolerance makes the weld quadratic on tiny meshes: every sample in

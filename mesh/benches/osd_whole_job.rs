@@ -46,7 +46,7 @@ mod common;
 mod osd;
 
 use capdiv::Real;
-use capdiv_mesh::tessellate::{tessellate, write_obj, PatchGeometry, TessPatch};
+use capdiv_mesh::tessellate::{tessellate, write_obj, PatchGeometry};
 use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord};
 use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink};
 use common::{ev_torus, feature_torus, helper, job_file, time, DEPTH};
@@ -174,13 +174,13 @@ impl<R> SurfaceSink<R> for Discard {
     fn cap(&mut self, _: &CapRecord<R>) {}
 }
 
-/// Keeps the patches as the tessellation takes them.
+/// Keeps the patches.
 #[derive(Default)]
-struct Keep(Vec<TessPatch<f64>>);
+struct Keep(Vec<PatchRecord<f64>>);
 
 impl SurfaceSink<f64> for Keep {
     fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0.push(TessPatch::of_record(p, p.level));
+        self.0.push(p.clone());
     }
     fn cap(&mut self, _: &CapRecord<f64>) {}
 }
@@ -341,11 +341,13 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
 }
 
 /// The welded OBJ tessellation of `patches` (grid [`TESS_GRID`], welded
-/// within `tol`), for callgrind's `--toggle-collect`: the OBJ text's length.
+/// within `tol`, faces tagged by level), for callgrind's `--toggle-collect`:
+/// the OBJ text's length.
 #[no_mangle]
 #[inline(never)]
-fn capdiv_tessellate_obj(patches: &[TessPatch<f64>], tol: f64) -> usize {
-    write_obj(&tessellate(patches.iter().copied(), TESS_GRID, tol), &[]).len()
+fn capdiv_tessellate_obj(patches: &[PatchRecord<f64>], tol: f64) -> usize {
+    let tagged = patches.iter().map(|p| (p, p.level));
+    write_obj(&tessellate(tagged, TESS_GRID, tol), &[]).len()
 }
 
 /// Median seconds of three calls of `f` (the tessellation takes seconds on
@@ -379,9 +381,13 @@ fn measure_tessellation(mesh: &MeshInput) -> (f64, f64, f64, usize, usize) {
         .expect("evaluate");
     let tol = WELD * size(mesh);
     let tess = median_of_3(|| {
-        black_box(tessellate(keep.0.iter().copied(), TESS_GRID, tol));
+        black_box(tessellate(
+            keep.0.iter().map(|p| (p, p.level)),
+            TESS_GRID,
+            tol,
+        ));
     });
-    let t = tessellate(keep.0.iter().copied(), TESS_GRID, tol);
+    let t = tessellate(keep.0.iter().map(|p| (p, p.level)), TESS_GRID, tol);
     let obj = median_of_3(|| {
         black_box(write_obj(&t, &[]));
     });

@@ -13,6 +13,7 @@
 
 use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
+use crate::facevarying::PatchUv;
 use crate::hole;
 use crate::mem;
 use crate::plan::{ExtraordinaryCapPlan, PolarPlan, Scheme, SurfacePlan, Unit};
@@ -69,11 +70,14 @@ pub struct PatchRecord<R> {
     pub domain: [f64; 4],
     /// Bézier control points, oriented to the input face.
     pub geometry: PatchGeometry<R>,
-    /// Edges ([`crate::tessellate::edge_bit`]) met by two half-size patches.
+    /// Edges (bits as [`crate::tessellate::edge_bit`]) met by two patches of
+    /// half this one's size: a tessellation samples them twice as finely.
     pub finer: u8,
-    /// Edges ([`crate::tessellate::edge_bit`]) bordering the cap's last hole.
+    /// Edges (bits as [`crate::tessellate::edge_bit`]) bordering the cap's
+    /// last hole, closed by triangles to [`PatchRecord::hole_point`].
     pub hole: u8,
-    /// The cap's limit point (where `hole` edges are closed to).
+    /// The cap's limit point, where `hole` edges are closed to (unused when
+    /// `hole` is 0).
     pub hole_point: Point3<R>,
     /// Bit `k` (edges as [`crate::tessellate::edge_bit`] numbers them): edge
     /// `k` lies on the surface's boundary. Bit `4 + k`: corner
@@ -85,6 +89,33 @@ pub struct PatchRecord<R> {
     /// Index of the cap it belongs to (polar caps first, then EG and
     /// Catmull-Clark caps, in plan order), if any.
     pub cap: Option<u32>,
+    /// Texture coordinates over the patch, for a surface that has them: the
+    /// evaluator gives `None`; [`crate::FaceVarying::patch`] computes them
+    /// from the record, and the tessellation carries them to its vertices.
+    pub uv: Option<PatchUv>,
+}
+
+impl<R: Real> PatchRecord<R> {
+    /// A patch of `kind` that is not a piece of an input mesh's face (a
+    /// kernel configuration's ring or outer-region patch, a test's patch):
+    /// level 0, face 0, the whole unit square as its domain, no finer or
+    /// hole edge, no boundary, no cap, no UVs.
+    pub fn new(kind: PatchKind, geometry: PatchGeometry<R>) -> Self {
+        PatchRecord {
+            kind,
+            level: 0,
+            face: 0,
+            corner: None,
+            domain: [0.0, 1.0, 0.0, 1.0],
+            geometry,
+            finer: 0,
+            hole: 0,
+            hole_point: Point3::ZERO,
+            boundary: 0,
+            cap: None,
+            uv: None,
+        }
+    }
 }
 
 /// One cap's centre.
@@ -919,5 +950,6 @@ where
         hole_point,
         boundary: 0,
         cap,
+        uv: None,
     }
 }

@@ -310,20 +310,15 @@ mod tests {
     fn patch_uvs_are_the_face_values_at_the_domain_corners() {
         let m = pentagon_and_quad();
         let fv = FaceVarying::without_plan(&m).unwrap().unwrap();
-        let p = PatchRecord::<f64> {
-            kind: PatchKind::Regular,
+        let geometry = crate::tessellate::PatchGeometry::Cubic(capdiv::TensorPatch {
+            points: [[capdiv::Point3::<f64>::ZERO; 4]; 4],
+        });
+        let p = PatchRecord {
             level: 2,
             face: 1,
-            corner: None,
             domain: [0.25, 0.5, 0.5, 0.75],
-            geometry: crate::tessellate::PatchGeometry::Cubic(capdiv::TensorPatch {
-                points: [[capdiv::Point3::ZERO; 4]; 4],
-            }),
-            finer: 0,
             hole: crate::tessellate::edge_bit(crate::tessellate::EDGE_U0),
-            hole_point: capdiv::Point3::ZERO,
-            boundary: 0,
-            cap: None,
+            ..PatchRecord::new(PatchKind::Regular, geometry)
         };
         let uv = fv.patch(&p);
         for (u, v) in [(0.0, 0.0), (0.3, 0.9), (1.0, 0.5)] {

@@ -18,7 +18,7 @@
 mod common;
 
 use capdiv::Point3;
-use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, TessPatch};
+use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate};
 use capdiv_mesh::{
     samples, EdgeCrease, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan,
     VertexCorner,
@@ -93,7 +93,7 @@ fn check_coverage(name: &str, m: &MeshInput, plan: &SurfacePlan<'_>, c: &Collect
 }
 
 fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {
-    let patches = c.patches.iter().map(|p| TessPatch::of_record(p, p.face));
+    let patches = c.patches.iter().map(|p| (p, p.face));
     tessellate(patches, 3, 1e-9)
 }
 

@@ -8,7 +8,7 @@
 //! open.
 
 use capdiv_mesh::obj::parse_obj;
-use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, BadEdge, TessPatch};
+use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, BadEdge};
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology,
 };
@@ -68,13 +68,7 @@ fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge>
             .iter()
             .flatten()
             .fold(0.0f64, |m, c| m.max(c.abs()));
-        let t = tessellate(
-            sink.patches
-                .iter()
-                .map(|p| TessPatch::of_record(p, p.level)),
-            1,
-            1e-9 * size,
-        );
+        let t = tessellate(sink.patches.iter().map(|p| (p, p.level)), 1, 1e-9 * size);
         assert!(t.positions.iter().all(|p| p.is_finite()));
         closed = is_closed_and_oriented(&t.faces);
     }

@@ -8,8 +8,9 @@
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, TensorPatch};
 use capdiv_mesh::tessellate::{
     edge_bit, is_closed_and_oriented, tessellate, weld, write_obj, BadEdge, EdgeFault, Face,
-    PatchGeometry, TessPatch, Tessellation, EDGE_U0, EDGE_U1, EDGE_V0, EDGE_V1,
+    PatchGeometry, Tessellation, EDGE_U0, EDGE_U1, EDGE_V0, EDGE_V1,
 };
+use capdiv_mesh::{PatchKind, PatchRecord};
 use std::collections::BTreeSet;
 
 type P = Point3<f64>;
@@ -133,8 +134,27 @@ fn elevate(b: &BicubicPatch<f64>) -> BiquarticPatch<f64> {
     TensorPatch { points: pts }
 }
 
-fn cubic(b: BicubicPatch<f64>, tag: u32) -> TessPatch<f64> {
-    TessPatch::new(PatchGeometry::Cubic(b), tag)
+/// A patch record of `geometry` whose face number is the tag its faces get
+/// ([`by_face`]).
+fn patch(geometry: PatchGeometry<f64>, tag: u32) -> PatchRecord<f64> {
+    PatchRecord {
+        face: tag,
+        ..PatchRecord::new(PatchKind::Regular, geometry)
+    }
+}
+
+fn cubic(b: BicubicPatch<f64>, tag: u32) -> PatchRecord<f64> {
+    patch(PatchGeometry::Cubic(b), tag)
+}
+
+/// The patches to tessellate, each tagged with its face number.
+fn by_face(
+    patches: impl IntoIterator<Item = PatchRecord<f64>>,
+) -> impl Iterator<Item = (PatchRecord<f64>, u32)> {
+    patches.into_iter().map(|p| {
+        let tag = p.face;
+        (p, tag)
+    })
 }
 
 fn corner_points(g: &PatchGeometry<f64>) -> [P; 4] {
@@ -157,7 +177,7 @@ fn corner_points(g: &PatchGeometry<f64>) -> [P; 4] {
 /// Sets the `finer` bit of every edge of `patch` whose two end points
 /// `corners` (the patch's corners before any bulging) lie on one of the cube
 /// faces `planes` (outward normals `c`: `q·c = 1`).
-fn mark_finer(patch: &mut TessPatch<f64>, corners: [P; 4], planes: &[P]) {
+fn mark_finer(patch: &mut PatchRecord<f64>, corners: [P; 4], planes: &[P]) {
     for e in [EDGE_V0, EDGE_U1, EDGE_V1, EDGE_U0] {
         let (a, b) = (corners[e as usize], corners[(e as usize + 1) % 4]);
         if planes.iter().any(|c| a.dot(*c) == 1.0 && b.dot(*c) == 1.0) {
@@ -168,7 +188,7 @@ fn mark_finer(patch: &mut TessPatch<f64>, corners: [P; 4], planes: &[P]) {
 
 /// The cube with faces `split` cut into 2×2 quarter patches (de Casteljau), the
 /// other faces whole with `finer` edges against them.
-fn split_cube(split: &[usize], bulge: fn(P) -> P) -> Vec<TessPatch<f64>> {
+fn split_cube(split: &[usize], bulge: fn(P) -> P) -> Vec<PatchRecord<f64>> {
     let faces = cube_faces();
     let mut out = Vec::new();
     for (f, face) in faces.iter().enumerate() {
@@ -268,7 +288,7 @@ fn whole_cube_is_closed_oriented_sphere() {
             .iter()
             .enumerate()
             .map(|(f, face)| cubic(face.patch((0.0, 1.0), (0.0, 1.0), flat), f as u32));
-        let t = tessellate(patches, grid, 1e-9);
+        let t = tessellate(by_face(patches), grid, 1e-9);
         assert_closed_sphere(&t);
         assert_outward(&t);
         // 6 faces of grid² quads; vertices of the cube's surface lattice.
@@ -289,7 +309,7 @@ fn split_face_against_finer_edges_is_closed_without_t_junctions() {
             let patches = split_cube(split, flat);
             let finer: u32 = patches.iter().map(|p| p.finer.count_ones()).sum();
             assert_eq!(finer as usize, 4 * split.len() - shared(split));
-            let t = tessellate(patches, grid, 1e-9);
+            let t = tessellate(by_face(patches), grid, 1e-9);
             assert_closed_sphere(&t);
             assert_outward(&t);
             assert_no_t_junction(&t);
@@ -334,7 +354,7 @@ fn lattice_points(split: &[usize], grid: usize) -> usize {
 /// corner (1,1,1); the corner's three quarters form one hole, closed by a fan
 /// to the corner from the 6 ring edges around it. The other faces are whole,
 /// finer against the L faces.
-fn holed_cube(quartic: bool) -> Vec<TessPatch<f64>> {
+fn holed_cube(quartic: bool) -> Vec<PatchRecord<f64>> {
     let faces = cube_faces();
     let corner = p(1.0, 1.0, 1.0);
     let mut out = Vec::new();
@@ -352,19 +372,19 @@ fn holed_cube(quartic: bool) -> Vec<TessPatch<f64>> {
             let a = face.patch((0.0, 0.5), (0.0, 0.5), flat);
             let b = face.patch((0.5, 1.0), (0.0, 0.5), flat);
             let c = face.patch((0.0, 0.5), (0.5, 1.0), flat);
-            out.push(TessPatch::new(geometry(a, false), f as u32));
-            let mut tb = TessPatch::new(geometry(b, true), f as u32);
+            out.push(patch(geometry(a, false), f as u32));
+            let mut tb = patch(geometry(b, true), f as u32);
             tb.hole = edge_bit(EDGE_V1);
             tb.hole_point = corner;
             out.push(tb);
-            let mut tc = TessPatch::new(geometry(c, f % 2 == 0), f as u32);
+            let mut tc = patch(geometry(c, f % 2 == 0), f as u32);
             tc.hole = edge_bit(EDGE_U1);
             tc.hole_point = corner;
             out.push(tc);
         } else {
             let whole = face.patch((0.0, 1.0), (0.0, 1.0), flat);
             let corners = corner_points(&PatchGeometry::Cubic(whole));
-            let mut t = TessPatch::new(geometry(whole, f % 2 == 1), f as u32);
+            let mut t = patch(geometry(whole, f % 2 == 1), f as u32);
             let planes: Vec<P> = faces
                 .iter()
                 .map(|g| g.c)
@@ -381,7 +401,7 @@ fn holed_cube(quartic: bool) -> Vec<TessPatch<f64>> {
 #[test]
 fn cap_hole_fan_closes_the_surface() {
     for grid in [1, 2, 5] {
-        let t = tessellate(holed_cube(false), grid, 1e-9);
+        let t = tessellate(by_face(holed_cube(false)), grid, 1e-9);
         assert_closed_sphere(&t);
         assert_outward(&t);
         assert_no_t_junction(&t);
@@ -421,8 +441,8 @@ fn biquartic_and_bicubic_patches_mix() {
     }
     // The holed cube, half its patches bi-quartic.
     for grid in [1, 2, 5] {
-        let cubic_only = tessellate(holed_cube(false), grid, 1e-9);
-        let mixed = tessellate(holed_cube(true), grid, 1e-9);
+        let cubic_only = tessellate(by_face(holed_cube(false)), grid, 1e-9);
+        let mixed = tessellate(by_face(holed_cube(true)), grid, 1e-9);
         assert_closed_sphere(&mixed);
         assert_outward(&mixed);
         assert_eq!(mixed.positions.len(), cubic_only.positions.len());
@@ -446,7 +466,7 @@ fn biquartic_and_bicubic_patches_mix() {
         assert!(patches
             .iter()
             .any(|t| matches!(t.geometry, PatchGeometry::Quartic(_))));
-        let t = tessellate(patches, grid, 1e-9);
+        let t = tessellate(by_face(patches), grid, 1e-9);
         assert_closed_sphere(&t);
         assert_outward(&t);
         assert_eq!(t.positions.len(), lattice_points(&[4], grid));
@@ -463,7 +483,7 @@ fn normals_are_the_patch_normals() {
         (PatchGeometry::Quartic(elevate(&b)), "quartic"),
     ] {
         let grid = 4;
-        let t = tessellate([TessPatch::new(geometry, 0)], grid, 0.0);
+        let t = tessellate(by_face([patch(geometry, 0)]), grid, 0.0);
         assert_eq!(t.positions.len(), 25, "{name}");
         for a in 0..=grid {
             for c in 0..=grid {
@@ -486,7 +506,7 @@ fn normals_are_the_patch_normals() {
         }
     }
     // The cube: unit, outward; inside a face, the face's normal.
-    let t = tessellate(split_cube(&[4], flat), 3, 1e-9);
+    let t = tessellate(by_face(split_cube(&[4], flat)), 3, 1e-9);
     for (q, n) in t.positions.iter().zip(&t.normals) {
         assert!((n.norm() - 1.0).abs() < 1e-14);
         assert!(n.dot(*q) > 0.0);
@@ -503,7 +523,7 @@ fn normals_are_the_patch_normals() {
     let d = TensorPatch {
         points: [[p(1.0, 2.0, 3.0); 4]; 4],
     };
-    let t = tessellate([cubic(d, 7)], 2, 1e-9);
+    let t = tessellate(by_face([cubic(d, 7)]), 2, 1e-9);
     assert_eq!(t.positions.len(), 1);
     assert_eq!(t.normals[0], P::ZERO);
     assert!(t.faces.is_empty());
@@ -511,7 +531,7 @@ fn normals_are_the_patch_normals() {
 }
 
 /// Two unit squares side by side in z = 0; the second's shared edge moved by `eps` in x.
-fn two_squares(eps: f64) -> [TessPatch<f64>; 2] {
+fn two_squares(eps: f64) -> [PatchRecord<f64>; 2] {
     let sq = |x0: f64, shift_left: f64| {
         let mut pts = [[P::ZERO; 4]; 4];
         for (i, row) in pts.iter_mut().enumerate() {
@@ -528,9 +548,9 @@ fn two_squares(eps: f64) -> [TessPatch<f64>; 2] {
 #[test]
 fn weld_tolerance_decides_merging() {
     let grid = 3;
-    let welded = tessellate(two_squares(1e-12), grid, 1e-9);
+    let welded = tessellate(by_face(two_squares(1e-12)), grid, 1e-9);
     assert_eq!(welded.positions.len(), (2 * grid + 1) * (grid + 1));
-    let apart = tessellate(two_squares(1e-12), grid, 1e-14);
+    let apart = tessellate(by_face(two_squares(1e-12)), grid, 1e-14);
     assert_eq!(apart.positions.len(), 2 * (grid + 1) * (grid + 1));
     assert_eq!(welded.faces.len(), apart.faces.len());
     // The welded pair is an open sheet: its boundary shows.
@@ -667,7 +687,7 @@ fn closedness_check_reports_the_first_bad_edge() {
 
 #[test]
 fn obj_text_lists_vertices_normals_and_faces() {
-    let t = tessellate(holed_cube(false), 1, 1e-9);
+    let t = tessellate(by_face(holed_cube(false)), 1, 1e-9);
     let text = write_obj(&t, &["holed cube".to_string()]);
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(lines[0], "# holed cube");
@@ -696,20 +716,22 @@ fn obj_text_lists_vertices_normals_and_faces() {
     }
     // f32 works the same way.
     let t32 = tessellate(
-        holed_cube(false).into_iter().map(|t| TessPatch {
-            geometry: match t.geometry {
+        holed_cube(false).into_iter().map(|t| {
+            let geometry = match t.geometry {
                 PatchGeometry::Cubic(b) => PatchGeometry::Cubic(TensorPatch {
                     points: b.points.map(|r| r.map(|q| q.cast())),
                 }),
                 PatchGeometry::Quartic(b) => PatchGeometry::Quartic(TensorPatch {
                     points: b.points.map(|r| r.map(|q| q.cast())),
                 }),
-            },
-            finer: t.finer,
-            hole: t.hole,
-            hole_point: t.hole_point.cast(),
-            tag: t.tag,
-            uv: t.uv,
+            };
+            let record = PatchRecord {
+                finer: t.finer,
+                hole: t.hole,
+                hole_point: t.hole_point.cast(),
+                ..PatchRecord::new(t.kind, geometry)
+            };
+            (record, t.face)
         }),
         1,
         1e-5f32,
@@ -748,7 +770,7 @@ fn timing_large_patchwork() {
     }
     let count = patches.len();
     let start = std::time::Instant::now();
-    let t = tessellate(patches, grid, 1e-9);
+    let t = tessellate(by_face(patches), grid, 1e-9);
     let secs = start.elapsed().as_secs_f64();
     println!(
         "{count} patches, grid {grid}: {} samples -> {} vertices, {} faces in {secs:.3} s ({:.2e} samples/s, {:.2e} vertices/s)",
@@ -802,7 +824,7 @@ fn c2ps_cap_rings_weld_into_a_disk() {
         let valence = net.valence();
         let limit = PoleJet::of(&net).limit();
         for (k, b) in net.ring_patches().enumerate() {
-            let mut t = TessPatch::new(PatchGeometry::Cubic(b), level as u32);
+            let mut t = patch(PatchGeometry::Cubic(b), level as u32);
             if k < valence {
                 // Span 0: its inner edge u = 0 faces the next ring, or the hole.
                 if last {
@@ -817,7 +839,7 @@ fn c2ps_cap_rings_weld_into_a_disk() {
         net.step(FirstStep::Uniform).unwrap();
     }
     for grid in [1, 3] {
-        let t = tessellate(patches.iter().copied(), grid, 1e-9);
+        let t = tessellate(by_face(patches.iter().cloned()), grid, 1e-9);
         assert_disk(&t, n * grid);
     }
 }
@@ -859,7 +881,7 @@ fn eg_cap_rings_weld_into_a_disk() {
             sub.step().unwrap();
             let last = m + 1 == steps;
             for (k, b) in sub.ring_patches().enumerate() {
-                let mut t = TessPatch::new(PatchGeometry::Quartic(b), m as u32);
+                let mut t = patch(PatchGeometry::Quartic(b), m as u32);
                 let inner = match k % 3 {
                     0 => edge_bit(EDGE_U0),
                     1 => edge_bit(EDGE_V0),
@@ -875,7 +897,7 @@ fn eg_cap_rings_weld_into_a_disk() {
             }
         }
         for grid in [1, 4] {
-            let t = tessellate(patches.iter().copied(), grid, 1e-9);
+            let t = tessellate(by_face(patches.iter().cloned()), grid, 1e-9);
             // Outer boundary: per sector x = 1 and y = 1, two patch edges each.
             assert_disk(&t, 4 * n * grid);
         }

@@ -8,7 +8,7 @@
 use capdiv_mesh::samples;
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter, StreamSummary,
-    StreamTessellator, TessPatch, TessellatingSink, Tessellation,
+    StreamTessellator, TessellatingSink, Tessellation,
 };
 use capdiv_mesh::{
     CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Unit,
@@ -47,8 +47,9 @@ fn patches(mesh: &MeshInput, depth: u32) -> Vec<PatchRecord<f64>> {
     c.patches
 }
 
-fn tess_patch(p: &PatchRecord<f64>) -> TessPatch<f64> {
-    TessPatch::of_record(p, p.level)
+/// A patch to tessellate, tagged by its level.
+fn tess_patch(p: &PatchRecord<f64>) -> (&PatchRecord<f64>, u32) {
+    (p, p.level)
 }
 
 /// The CLI's weld tolerance: 1e-9 of the bounding box's largest side.
@@ -79,7 +80,7 @@ fn streamed(
     let mut tess = StreamTessellator::new(grid, tol);
     let mut out = Tessellation::default();
     for p in patches {
-        tess.push_record(p, p.level, &mut out);
+        tess.push(p, p.level, &mut out);
     }
     let summary = tess.finish(&mut out);
     (out, summary)
@@ -196,7 +197,7 @@ fn obj_writer_writes_the_lines_of_write_obj() {
     let mut tess = StreamTessellator::new(2, tol);
     let mut w = ObjWriter::new(String::new(), &["streamed"]);
     for p in &ps {
-        tess.push_record(p, 0, &mut w);
+        tess.push(p, 0, &mut w);
     }
     tess.finish(&mut w);
     assert_eq!(w.error, Ok(()));
@@ -411,7 +412,7 @@ fn faces_follow_their_vertices() {
     let mut tess = StreamTessellator::new(3, weld_tolerance(&mesh));
     let mut c = Count::default();
     for p in &ps {
-        tess.push_record(p, 0, &mut c);
+        tess.push(p, 0, &mut c);
     }
     let s = tess.finish(&mut c);
     assert_eq!(c.vertices, s.vertices);

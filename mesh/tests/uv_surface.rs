@@ -10,7 +10,7 @@
 //! tessellation without UVs); each output face lies in its input face's
 //! checker square; the OBJ text carries the same UVs.
 
-use capdiv_mesh::tessellate::{tessellate, write_obj, TessPatch, Tessellation};
+use capdiv_mesh::tessellate::{tessellate, write_obj, Tessellation};
 use capdiv_mesh::{
     samples, CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PlanOptions,
     SurfacePlan, SurfaceSink,
@@ -112,9 +112,12 @@ fn surface(m: &MeshInput) -> (Vec<PatchRecord<f64>>, FaceVarying) {
 
 fn tess(patches: &[PatchRecord<f64>], fv: Option<&FaceVarying>) -> Tessellation<f64> {
     tessellate(
-        patches.iter().map(|p| TessPatch {
-            uv: fv.map(|fv| fv.patch(p)),
-            ..TessPatch::of_record(p, p.face)
+        patches.iter().map(|p| {
+            let record = PatchRecord {
+                uv: fv.map(|fv| fv.patch(p)),
+                ..p.clone()
+            };
+            (record, p.face)
         }),
         3,
         1e-9,

@@ -52,10 +52,32 @@ use crate::Scalar;
 use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions, TensorPatch};
 use capdiv_mesh::tessellate::{
     ring_inner_edges, tessellate, write_obj, ObjWriter, PatchGeometry, RingLayout,
-    StreamTessellator, TessPatch, Tessellation,
+    StreamTessellator, Tessellation,
 };
-use capdiv_mesh::PatchUv;
+use capdiv_mesh::{PatchKind, PatchRecord, PatchUv};
 use std::io::Write;
+
+/// The record of a kernel configuration's patch of `level` with `finer`
+/// edges: a C²PS (or RTS) patch if bicubic, an EG patch if bi-quartic.
+fn record<R: Scalar, const K: usize>(
+    level: u32,
+    patch: TensorPatch<R, K>,
+    finer: u8,
+) -> PatchRecord<R>
+where
+    TensorPatch<R, K>: Into<PatchGeometry<R>>,
+{
+    let kind = if K == 5 {
+        PatchKind::Eg
+    } else {
+        PatchKind::Polar
+    };
+    PatchRecord {
+        level,
+        finer,
+        ..PatchRecord::new(kind, patch.into())
+    }
+}
 
 /// The patches of a configuration through some depth, `K×K` control points
 /// each.
@@ -83,10 +105,10 @@ where
         describe(self.patches.len(), self.outer, &self.rings, K)
     }
 
-    /// The patches as the tessellator takes them, tagged by level, each
-    /// ring's edges that the next ring meets marked finer
-    /// ([`inner_edges`]).
-    pub fn tess_patches(&self) -> Vec<TessPatch<R>> {
+    /// The patches as the tessellator takes them, each with its level (the
+    /// tag of its faces), each ring's edges that the next ring meets marked
+    /// finer ([`inner_edges`]).
+    pub fn tess_patches(&self) -> Vec<(PatchRecord<R>, u32)> {
         let mut finer = vec![0u8; self.outer];
         for (r, &(_, len)) in self.rings.iter().enumerate() {
             let last = r + 1 == self.rings.len();
@@ -95,10 +117,7 @@ where
         self.patches
             .iter()
             .zip(finer)
-            .map(|(p, finer)| TessPatch {
-                finer,
-                ..TessPatch::new(p.patch.into(), p.level)
-            })
+            .map(|(p, finer)| (record(p.level, p.patch, finer), p.level))
             .collect()
     }
 
@@ -117,9 +136,12 @@ where
             corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
             hole: [0.0, 0.0],
         };
-        let patches = self.tess_patches().into_iter().map(|p| TessPatch {
-            uv: Some(square),
-            ..p
+        let patches = self.tess_patches().into_iter().map(|(p, tag)| {
+            let record = PatchRecord {
+                uv: Some(square),
+                ..p
+            };
+            (record, tag)
         });
         tessellate(patches, grid, R::from_f64(factor * self.size))
     }
@@ -590,11 +612,7 @@ impl<R: Scalar> PatchWriter<'_, R> {
                 Ok(())
             }
             PatchWriter::Obj { tess, obj } => {
-                let p = TessPatch {
-                    finer,
-                    ..TessPatch::new((*patch).into(), level)
-                };
-                tess.push(&p, None, obj);
+                tess.push(&record(level, *patch, finer), level, obj);
                 obj_error(obj)
             }
         }

@@ -47,7 +47,7 @@ use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
-    TessPatch, Tessellation,
+    Tessellation,
 };
 use capdiv_mesh::{
     CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
@@ -1074,10 +1074,13 @@ pub fn tessellate_surface_tagged<R: Scalar>(
     fn tess_patches<S: capdiv::Real>(
         s: &Surface<S>,
         tag: fn(&PatchRecord<S>) -> u32,
-    ) -> impl Iterator<Item = TessPatch<S>> + '_ {
-        s.patches.iter().enumerate().map(move |(k, p)| TessPatch {
-            uv: s.uvs.get(k).copied(),
-            ..TessPatch::of_record(p, tag(p))
+    ) -> impl Iterator<Item = (PatchRecord<S>, u32)> + '_ {
+        s.patches.iter().enumerate().map(move |(k, p)| {
+            let record = PatchRecord {
+                uv: s.uvs.get(k).copied(),
+                ..p.clone()
+            };
+            (record, tag(p))
         })
     }
     let t = match guide {

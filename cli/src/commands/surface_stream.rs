@@ -103,7 +103,7 @@ impl<W: std::fmt::Write> SurfaceSink<f64> for ObjStream<'_, W> {
     fn patch(&mut self, p: &PatchRecord<f64>) {
         let start = Instant::now();
         self.tess
-            .push_record(p, p.level, self.obj as &mut dyn MeshSink<f64>);
+            .push(p, p.level, self.obj as &mut dyn MeshSink<f64>);
         self.time += start.elapsed();
     }
     fn cap(&mut self, _: &CapRecord<f64>) {

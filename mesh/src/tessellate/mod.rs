@@ -5,22 +5,29 @@
 //! Each cap leaves a last hole, closed by a fan of triangles to its limit
 //! point.
 //!
+//! A patch to tessellate is the evaluator's [`PatchRecord`] — its geometry,
+//! the edge bits [`PatchRecord::finer`] and [`PatchRecord::hole`], its
+//! [`PatchRecord::hole_point`] and [`PatchRecord::uv`] — with a `u32` tag
+//! given alongside, copied to every output face of the patch
+//! ([`Tessellation::tags`]); [`PatchRecord::new`] makes one of a bare
+//! Bézier patch.
+//!
 //! [`tessellate`] samples every patch on a `grid × grid` parameter grid
 //! (`(u, v) = (a/grid, b/grid)`, [`capdiv::TensorPatch::evaluate`]):
 //!
-//! - an edge whose [`TessPatch::finer`] bit is set is sampled at `2·grid`
+//! - an edge whose [`PatchRecord::finer`] bit is set is sampled at `2·grid`
 //!   segments (the midpoints `(2c+1)/(2·grid)` added), so its points are
 //!   exactly those of the two half-size neighbours' `grid`-segment edges. The
 //!   cells along it become triangle fans from a midpoint (a cell with one
 //!   midpoint: 3 triangles), so there is no T-junction;
-//! - an edge whose [`TessPatch::hole`] bit is set gets one triangle per
+//! - an edge whose [`PatchRecord::hole`] bit is set gets one triangle per
 //!   segment, `(segment reversed, hole_point)`, oriented like the patch;
 //! - samples that coincide within `weld_tolerance` (absolute, per
 //!   coordinate: `max |Δx|, |Δy|, |Δz| ≤ tol`), directly or through a chain
 //!   of such samples, are merged into one vertex (sorting on quantised
 //!   coordinates, `O(N log N)`; see [`weld`]). Vertices are numbered in the
 //!   order of their first sample;
-//! - with texture coordinates ([`TessPatch::uv`]), every sample gets its
+//! - with texture coordinates ([`PatchRecord::uv`]), every sample gets its
 //!   patch's bilinear UV, and a welded vertex whose samples carry different
 //!   UVs (a UV seam) is split into one vertex per UV
 //!   ([`weld::split_by_uv`]); nothing else changes. Without UVs the result
@@ -29,8 +36,8 @@
 //! **Edge bits.** A patch's edges are numbered counter-clockwise around its
 //! own square, `0`: `v = 0` ([`EDGE_V0`]), `1`: `u = 1`, `2`: `v = 1`, `3`:
 //! `u = 0`; a set of edges is a `u8` with bit `e` ([`edge_bit`]) for edge
-//! `e`. [`TessPatch::finer`], [`TessPatch::hole`] and the evaluator's
-//! [`crate::PatchRecord`] use them.
+//! `e`. [`PatchRecord::finer`], [`PatchRecord::hole`] and
+//! [`PatchRecord::boundary`] use them.
 //!
 //! The result is a [`Tessellation`]: a closed input surface gives a closed,
 //! consistently oriented mesh ([`is_closed_and_oriented`]). Faces are
@@ -45,10 +52,10 @@ pub mod stream;
 pub mod weld;
 
 use crate::evaluate::PatchRecord;
-use crate::facevarying::PatchUv;
 use alloc::vec;
 use alloc::vec::Vec;
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
+use core::borrow::Borrow;
 
 pub use check::{is_closed_and_oriented, BadEdge, EdgeFault};
 pub use obj::{write_number, write_obj, write_point};
@@ -63,8 +70,8 @@ pub const EDGE_V1: u8 = 2;
 /// Edge `u = 0`, `v` from 1 to 0.
 pub const EDGE_U0: u8 = 3;
 
-/// The bit of edge `e` (one of `EDGE_*`) in [`TessPatch::finer`] and
-/// [`TessPatch::hole`]: `1 << e`.
+/// The bit of edge `e` (one of `EDGE_*`) in [`PatchRecord::finer`] and
+/// [`PatchRecord::hole`]: `1 << e`.
 pub const fn edge_bit(e: u8) -> u8 {
     1 << e
 }
@@ -84,8 +91,8 @@ pub enum RingLayout {
 /// The edges (bits as [`edge_bit`]) of ring patch `j` (of `len` in its
 /// ring, laid out as `layout`) that face the cap's centre: the next ring
 /// meets each of them with two patches of half the size
-/// ([`TessPatch::finer`]), or, on the last ring, the hole borders them
-/// ([`TessPatch::hole`]). Polar: edge `u = 0` of span 0; sectors: edge
+/// ([`PatchRecord::finer`]), or, on the last ring, the hole borders them
+/// ([`PatchRecord::hole`]). Polar: edge `u = 0` of span 0; sectors: edge
 /// `u = 0` of piece 0 and edge `v = 0` of piece 1.
 pub fn ring_inner_edges(layout: RingLayout, j: usize, len: usize) -> u8 {
     match layout {
@@ -117,53 +124,6 @@ impl<R> From<BicubicPatch<R>> for PatchGeometry<R> {
 impl<R> From<BiquarticPatch<R>> for PatchGeometry<R> {
     fn from(p: BiquarticPatch<R>) -> Self {
         PatchGeometry::Quartic(p)
-    }
-}
-
-/// One patch to tessellate, with what lies across each of its edges.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TessPatch<R> {
-    /// The Bézier patch.
-    pub geometry: PatchGeometry<R>,
-    /// Bit `e` ([`edge_bit`]) set: across edge `e` lie two patches of half
-    /// this one's size; that edge is sampled twice as finely.
-    pub finer: u8,
-    /// Bit `e` set: edge `e` borders the cap's last hole, closed by triangles
-    /// to [`TessPatch::hole_point`].
-    pub hole: u8,
-    /// The point the hole's fan meets (the cap's limit point); unused when
-    /// `hole` is 0.
-    pub hole_point: Point3<R>,
-    /// Free tag copied to every output face of this patch.
-    pub tag: u32,
-    /// Texture coordinates over the patch, if the surface has them.
-    pub uv: Option<PatchUv>,
-}
-
-impl<R: Real> TessPatch<R> {
-    /// An evaluator's patch ([`PatchRecord`]: its geometry, finer and hole
-    /// edges and hole point), tagged `tag`, without texture coordinates.
-    pub fn of_record(p: &PatchRecord<R>, tag: u32) -> Self {
-        TessPatch {
-            geometry: p.geometry,
-            finer: p.finer,
-            hole: p.hole,
-            hole_point: p.hole_point,
-            tag,
-            uv: None,
-        }
-    }
-
-    /// A patch with no finer edge and no hole edge.
-    pub fn new(geometry: PatchGeometry<R>, tag: u32) -> Self {
-        TessPatch {
-            geometry,
-            finer: 0,
-            hole: 0,
-            hole_point: Point3::ZERO,
-            tag,
-            uv: None,
-        }
     }
 }
 
@@ -213,10 +173,10 @@ pub struct Tessellation<R> {
     pub normals: Vec<Point3<R>>,
     /// The faces, patch after patch in input order.
     pub faces: Vec<Face>,
-    /// Per face: the [`TessPatch::tag`] of its patch.
+    /// Per face: the tag its patch was given with.
     pub tags: Vec<u32>,
     /// Per vertex: its texture coordinates, when the patches have them
-    /// ([`TessPatch::uv`]; a patch without them gives (0, 0)); empty
+    /// ([`PatchRecord::uv`]; a patch without them gives (0, 0)); empty
     /// otherwise.
     pub uvs: Vec<[f64; 2]>,
     /// With UVs: per vertex, the first vertex of its position class (itself
@@ -231,15 +191,17 @@ pub struct Tessellation<R> {
     pub degenerate_dropped: usize,
 }
 
-/// Tessellates `patches` with `grid` segments per patch side (`grid = 0` is
-/// taken as 1) and welds samples within `weld_tolerance` (a negative or NaN
-/// tolerance is taken as 0: only equal coordinates weld). See the module doc.
+/// Tessellates `patches` — each a [`PatchRecord`] (borrowed or owned) and
+/// the tag of its faces — with `grid` segments per patch side (`grid = 0`
+/// is taken as 1) and welds samples within `weld_tolerance` (a negative or
+/// NaN tolerance is taken as 0: only equal coordinates weld). See the
+/// module doc.
 ///
 /// # Panics
 ///
 /// If the samples outnumber `u32::MAX` (`u32` indices).
-pub fn tessellate<R: Real>(
-    patches: impl IntoIterator<Item = TessPatch<R>>,
+pub fn tessellate<R: Real, P: Borrow<PatchRecord<R>>>(
+    patches: impl IntoIterator<Item = (P, u32)>,
     grid: usize,
     weld_tolerance: R,
 ) -> Tessellation<R> {
@@ -255,9 +217,9 @@ pub fn tessellate<R: Real>(
 /// the connectivity of the `f64` surface does not depend on that. If the
 /// two patchworks do not have the same samples, `patches` are welded on their
 /// own with `fallback_tolerance`.
-pub fn tessellate_guided<R: Real, S: Real>(
-    patches: impl IntoIterator<Item = TessPatch<R>>,
-    guide: impl IntoIterator<Item = TessPatch<S>>,
+pub fn tessellate_guided<R: Real, S: Real, P: Borrow<PatchRecord<R>>, G: Borrow<PatchRecord<S>>>(
+    patches: impl IntoIterator<Item = (P, u32)>,
+    guide: impl IntoIterator<Item = (G, u32)>,
     grid: usize,
     guide_tolerance: S,
     fallback_tolerance: R,
@@ -273,13 +235,13 @@ pub fn tessellate_guided<R: Real, S: Real>(
 }
 
 /// Every patch's samples and faces, unwelded.
-fn sample_all<R: Real>(
-    patches: impl IntoIterator<Item = TessPatch<R>>,
+fn sample_all<R: Real, P: Borrow<PatchRecord<R>>>(
+    patches: impl IntoIterator<Item = (P, u32)>,
     grid: usize,
 ) -> sample::Raw<R> {
     let mut raw = sample::Raw::new(grid.max(1));
-    for p in patches {
-        raw.push(&p);
+    for (p, tag) in patches {
+        raw.push(p.borrow(), tag);
     }
     raw
 }

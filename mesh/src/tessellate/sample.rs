@@ -1,7 +1,8 @@
 //! Sampling and triangulation of one patch, before welding: every patch gets
 //! its own samples (shared edges are sampled once per patch and merged later).
 
-use super::{Face, PatchGeometry, TessPatch};
+use super::{Face, PatchGeometry};
+use crate::evaluate::PatchRecord;
 use crate::facevarying::PatchUv;
 use alloc::vec::Vec;
 use capdiv::{Point3, Real, TensorPatch};
@@ -45,11 +46,12 @@ impl<R: Real> Raw<R> {
         }
     }
 
-    pub fn push(&mut self, p: &TessPatch<R>) {
+    /// Samples and triangulates `p`, its faces tagged `tag`.
+    pub fn push(&mut self, p: &PatchRecord<R>, tag: u32) {
         let start = self.positions.len();
         match &p.geometry {
-            PatchGeometry::Cubic(g) => self.push_patch(g, p),
-            PatchGeometry::Quartic(g) => self.push_patch(g, p),
+            PatchGeometry::Cubic(g) => self.push_patch(g, p, tag),
+            PatchGeometry::Quartic(g) => self.push_patch(g, p, tag),
         }
         if let Some(uv) = &p.uv {
             self.push_uvs(uv, p, start);
@@ -58,7 +60,7 @@ impl<R: Real> Raw<R> {
 
     /// The UVs of the samples `start..` just pushed for `p`, in the order
     /// [`Raw::push_patch`] takes them.
-    fn push_uvs(&mut self, uv: &PatchUv, p: &TessPatch<R>, start: usize) {
+    fn push_uvs(&mut self, uv: &PatchUv, p: &PatchRecord<R>, start: usize) {
         self.uvs.resize(start, [0.0; 2]);
         let n = self.grid;
         let t = &self.uv_params;
@@ -99,7 +101,7 @@ impl<R: Real> Raw<R> {
         self.normals.push(Some(n));
     }
 
-    fn push_patch<const K: usize>(&mut self, g: &TensorPatch<R, K>, p: &TessPatch<R>) {
+    fn push_patch<const K: usize>(&mut self, g: &TensorPatch<R, K>, p: &PatchRecord<R>, tag: u32) {
         let n = self.grid;
         let base = self.positions.len();
         let side = n + 1;
@@ -176,7 +178,7 @@ impl<R: Real> Raw<R> {
                     }
                 }
                 self.tags.extend(core::iter::repeat_n(
-                    p.tag,
+                    tag,
                     self.faces.len() - self.tags.len(),
                 ));
             }
@@ -214,7 +216,7 @@ impl<R: Real> Raw<R> {
                 });
                 for w in run.windows(2) {
                     self.faces.push(Face::Tri([w[1], w[0], h]));
-                    self.tags.push(p.tag);
+                    self.tags.push(tag);
                 }
             }
         }

@@ -55,7 +55,7 @@
 //! or as used twice in the same direction.
 
 use super::sample::Raw;
-use super::{BadEdge, EdgeFault, Face, TessPatch};
+use super::{BadEdge, EdgeFault, Face};
 use crate::evaluate::{CapRecord, PatchRecord, SurfaceSink};
 use alloc::collections::VecDeque;
 use alloc::vec::Vec;
@@ -218,39 +218,32 @@ impl<R: Real> StreamTessellator<R> {
         }
     }
 
-    /// Tessellates one patch of `group` (a cap's index; `None`: no cap) and
-    /// hands what is final to `sink`. A patch of another group than the
-    /// previous one ends that group ([`Self::end_group`]).
+    /// Tessellates one patch, its faces tagged `tag`, and hands what is
+    /// final to `sink`. The patch's group is its cap ([`PatchRecord::cap`];
+    /// `None`: no cap): a patch of another group than the previous one ends
+    /// that group ([`Self::end_group`]). Samples inside the edges that
+    /// [`PatchRecord::boundary`] marks, and at a boundary corner of two
+    /// patches once both are done, leave the table at once instead of at
+    /// [`Self::finish`]; wrong bits make a vertex leave before its last
+    /// sample, which then makes a second vertex. The streaming weld carries
+    /// positions and normals only: [`PatchRecord::uv`] is not used.
     ///
     /// # Panics
     ///
     /// If the vertices outnumber `u32::MAX`.
-    pub fn push(&mut self, p: &TessPatch<R>, group: Option<u32>, sink: &mut dyn MeshSink<R>) {
-        self.push_on_boundary(p, group, 0, sink);
-    }
-
-    /// [`Self::push`] of a patch with `boundary` bits as
-    /// [`PatchRecord::boundary`]: samples inside a boundary edge, and at a
-    /// boundary corner of two patches once both are done, leave the table
-    /// at once instead of at [`Self::finish`]. Wrong bits make a vertex
-    /// leave before its last sample, which then makes a second vertex.
-    pub fn push_on_boundary(
-        &mut self,
-        p: &TessPatch<R>,
-        group: Option<u32>,
-        boundary: u8,
-        sink: &mut dyn MeshSink<R>,
-    ) {
-        if self.group != Some(group) {
+    pub fn push(&mut self, p: &PatchRecord<R>, tag: u32, sink: &mut dyn MeshSink<R>) {
+        if self.group != Some(p.cap) {
             self.end_group(sink);
-            self.group = Some(group);
+            self.group = Some(p.cap);
         }
         self.raw.positions.clear();
         self.raw.normals.clear();
         self.raw.faces.clear();
         self.raw.tags.clear();
-        self.raw.push(p);
-        self.classify(p, boundary);
+        self.raw.uvs.clear();
+        self.raw.push(p, tag);
+        self.raw.uvs.clear();
+        self.classify(p, p.boundary);
         let count = self.raw.positions.len();
         self.summary.samples += count;
         self.local.clear();
@@ -270,13 +263,6 @@ impl<R: Real> StreamTessellator<R> {
             }
         }
         self.flush(sink);
-    }
-
-    /// [`Self::push`] of an evaluator's patch, tagged `tag`, grouped by its cap.
-    pub fn push_record(&mut self, p: &PatchRecord<R>, tag: u32, sink: &mut dyn MeshSink<R>) {
-        // The streaming weld carries positions and normals only: no UVs.
-        let t = TessPatch::of_record(p, tag);
-        self.push_on_boundary(&t, p.cap, p.boundary, sink);
     }
 
     /// Ends the current group: its holes' points and corners leave the
@@ -337,7 +323,7 @@ impl<R: Real> StreamTessellator<R> {
     /// boundary edge adds the 2 of the outside to its inner samples, and 1 to
     /// each end that is a boundary corner of two patches (whose other
     /// boundary edge adds the other 1).
-    fn classify(&mut self, p: &TessPatch<R>, boundary: u8) {
+    fn classify(&mut self, p: &PatchRecord<R>, boundary: u8) {
         let n = self.grid;
         let side = n + 1;
         let count = self.raw.positions.len();
@@ -682,7 +668,7 @@ impl<R: Real> StreamTessellator<R> {
 }
 
 /// A [`SurfaceSink`] that tessellates the evaluator's patches as they come
-/// ([`StreamTessellator::push_record`], each face tagged `tag(its patch)`)
+/// ([`StreamTessellator::push`], each face tagged `tag(its patch)`)
 /// and ends each cap's group at its record. Call
 /// [`StreamTessellator::finish`] after the evaluation.
 pub struct TessellatingSink<'a, R, S> {
@@ -696,7 +682,7 @@ pub struct TessellatingSink<'a, R, S> {
 
 impl<R: Real, S: MeshSink<R>> SurfaceSink<R> for TessellatingSink<'_, R, S> {
     fn patch(&mut self, p: &PatchRecord<R>) {
-        self.tess.push_record(p, (self.tag)(p), self.out);
+        self.tess.push(p, (self.tag)(p), self.out);
     }
     fn cap(&mut self, _: &CapRecord<R>) {
         self.tess.end_group(self.out);

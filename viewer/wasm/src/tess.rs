@@ -509,6 +509,7 @@ mod tests {
             hole_point: Point3([-1.0, -1.0, 0.0]),
             boundary: 0,
             cap: None,
+            uv: None,
         }
     }
 
