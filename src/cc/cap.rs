@@ -35,6 +35,35 @@ const C_SLOTS: [usize; C_SECTOR] = [0, 1, 3, 4, 6, 7];
 /// [`CcCap::storage_len`]`(n) = 24n` points (two nets of 12 points per
 /// sector). Every operation works sector by sector with a fixed amount of
 /// stack, whatever the valence.
+///
+/// ```
+/// use capdiv::{CcCap, Error, Point3};
+/// // Valence 6, symmetric under a turn by 2π/6 about the z axis (the c-net
+/// // of docs/math/eg.md §1: center and 6 nodes per sector).
+/// let n = 6;
+/// let mut nodes = Vec::new();
+/// for s in 0..n {
+///     let a = s as f64 * core::f64::consts::TAU / n as f64;
+///     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+///         let (t, r) = (a + f64::atan2(y, x) * 4.0 / n as f64, f64::hypot(x, y));
+///         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+///     }
+/// }
+/// let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(n)];
+/// let mut cap = CcCap::new([0.0; 3], &nodes, &mut storage)?;
+/// // The limit (checked) lies on the axis, by symmetry; a step keeps it.
+/// let p = cap.limit().finite()?;
+/// assert!(p.0[0].abs() < 1e-14 && p.0[1].abs() < 1e-14);
+/// cap.step()?;
+/// assert!(cap.limit().max_abs_diff(p) < 1e-14);
+/// // The ring: 3 bicubic patches per sector, k = 3·sector + piece.
+/// assert_eq!(cap.ring_patches().len(), 3 * n);
+/// for (k, patch) in cap.ring_patches().enumerate() {
+///     assert_eq!(cap.ring_patch(k), Ok(patch));
+/// }
+/// assert_eq!(cap.ring_patch(3 * n), Err(Error::OutOfDomain));
+/// # Ok::<(), capdiv::Error>(())
+/// ```
 #[derive(Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct CcCap<'s, R> {
@@ -257,7 +286,8 @@ impl<'s, R: Real> CcCap<'s, R> {
     /// In the current grid these are the faces `[1,2]×[0,1]`, `[0,1]×[1,2]`,
     /// `[1,2]²`, all of whose corners are regular: the patch is the uniform
     /// bicubic B-spline of the face's 4×4 nodes, in Bézier form
-    /// ([`bspline_to_bezier_cubic`]). [`Error::OutOfDomain`] for `k ≥ ring_len()`.
+    /// ([`bspline_to_bezier_cubic`]). [`Error::OutOfDomain`] for `k ≥ ring_len()`
+    /// (every `k` before the first step).
     pub fn ring_patch(&self, k: usize) -> Result<BicubicPatch<R>, Error> {
         if k >= self.ring_len() {
             return Err(Error::OutOfDomain);
@@ -289,8 +319,10 @@ impl<'s, R: Real> CcCap<'s, R> {
         Ok(PatchDomain::of_ring_patch(self.level, k))
     }
 
-    /// All patches of the last step's ring, in index order (as
-    /// [`crate::eg::EgSubdivision::ring_patches`]).
+    /// All [`Self::ring_len`] patches of the last step's ring, in ring order
+    /// ([`Self::ring_patch`]: `k = 3·sector + piece`, as
+    /// [`crate::eg::EgSubdivision::ring_patches`]); none before the first
+    /// step.
     pub fn ring_patches(&self) -> CcRingPatches<'_, 's, R> {
         CcRingPatches { cap: self, next: 0 }
     }

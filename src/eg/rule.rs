@@ -168,6 +168,23 @@ impl<'a> RuleTable<'a> {
     ///
     /// ρ is measured by power iteration with this table's own step (96 steps
     /// of an `f32` d-net; two d-nets on the stack).
+    ///
+    /// ```
+    /// use capdiv::eg::tables::{A11_5, A21_5, A22_5, A31_5, A32_5};
+    /// use capdiv::eg::RuleTable;
+    /// use capdiv::Error;
+    /// // A11 with a row missing: the wrong shape, caught first.
+    /// assert_eq!(
+    ///     RuleTable::new(5, &A11_5[..2], &A22_5, &A21_5, &A31_5, &A32_5),
+    ///     Err(Error::TableShape)
+    /// );
+    /// # // The spectrum check's 96 steps take minutes under Miri.
+    /// # if cfg!(miri) { return Ok(()); }
+    /// // The published valence-5 arrays pass every check.
+    /// let table = RuleTable::new(5, &A11_5, &A22_5, &A21_5, &A31_5, &A32_5)?;
+    /// assert_eq!(Some(table), RuleTable::builtin(5));
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn new(
         n: usize,
         a11: &'a [Row],

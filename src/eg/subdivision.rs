@@ -111,6 +111,33 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     /// with `None`, [`Error::ValenceUnsupported`] for n = 6..10, whose rules
     /// must come from the caller; with a table, [`Error::TableShape`] when
     /// its valence is not the net's.
+    ///
+    /// ```
+    /// use capdiv::eg::{CNet, EgSubdivision};
+    /// use capdiv::Error;
+    /// // Valence 5, symmetric under a turn by 2π/5: sector s is sector 0
+    /// // turned by 2πs/5; 6 nodes per sector in the §1 order.
+    /// let n = 5;
+    /// let mut nodes = Vec::new();
+    /// for s in 0..n {
+    ///     let a = s as f64 * core::f64::consts::TAU / n as f64;
+    ///     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+    ///         let (t, r) = (a + f64::atan2(y, x) * 4.0 / n as f64, f64::hypot(x, y));
+    ///         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+    ///     }
+    /// }
+    /// let net = CNet::new([0.0; 3], &nodes)?;
+    /// let eg = EgSubdivision::new(&net, None)?; // the built-in §7 rule of valence 5
+    /// assert_eq!((eg.valence(), eg.level(), eg.ring_len()), (5, 0, 0));
+    /// assert_eq!(eg.limit(), net.limit()); // c0 by (3)
+    /// // Valence 6 has no built-in rule: the caller must pass a table.
+    /// let six = CNet::new([0.0; 3], &[[1.0, 0.0, 0.0]; 36])?;
+    /// assert_eq!(
+    ///     EgSubdivision::new(&six, None).unwrap_err(),
+    ///     Error::ValenceUnsupported { valence: 6 }
+    /// );
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn new<N: EgStart<R>>(net: &N, table: Option<RuleTable<'t>>) -> Result<Self, Error> {
         let mut sub = Self::empty();
         sub.reset(net, table)?;
@@ -178,6 +205,27 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     /// cannot overflow; others are first refined without storing), so the
     /// state is then unchanged. [`Error::ValenceTooSmall`] on an
     /// [`EgSubdivision::empty`] one.
+    ///
+    /// ```
+    /// # use capdiv::eg::{CNet, EgSubdivision};
+    /// # let n = 5;
+    /// # let mut nodes = Vec::new();
+    /// # for s in 0..n {
+    /// #     let a = s as f64 * core::f64::consts::TAU / n as f64;
+    /// #     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+    /// #         let (t, r) = (a + f64::atan2(y, x) * 4.0 / n as f64, f64::hypot(x, y));
+    /// #         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+    /// #     }
+    /// # }
+    /// # let net = CNet::new([0.0; 3], &nodes)?;
+    /// let mut eg = EgSubdivision::new(&net, None)?;
+    /// let c0 = eg.limit();
+    /// eg.step()?;
+    /// assert_eq!((eg.level(), eg.ring_len()), (1, 3 * 5));
+    /// assert_eq!(eg.limit(), c0); // c0 is fixed (§5)
+    /// assert_eq!(eg.previous().unwrap(), &net.to_dnet()); // the level-0 d-net (§3)
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn step(&mut self) -> Result<(), Error> {
         let n = self.valence();
         check_valence(n)?;
@@ -248,6 +296,26 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
     /// finite ([`EgSubdivision::new`] checks the net, and a step that would
     /// overflow is refused), so it needs no [`Point3::finite`] check, unlike
     /// [`crate::CcCap::limit`] and [`crate::PoleJet`].
+    ///
+    /// ```
+    /// # use capdiv::eg::{CNet, EgSubdivision};
+    /// # let n = 5;
+    /// # let mut nodes = Vec::new();
+    /// # for s in 0..n {
+    /// #     let a = s as f64 * core::f64::consts::TAU / n as f64;
+    /// #     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+    /// #         let (t, r) = (a + f64::atan2(y, x) * 4.0 / n as f64, f64::hypot(x, y));
+    /// #         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+    /// #     }
+    /// # }
+    /// # let net = CNet::new([0.0; 3], &nodes)?;
+    /// // The net is symmetric under a turn by 2π/5 about the z axis: so is its
+    /// // limit, which therefore lies on the axis.
+    /// let eg = EgSubdivision::new(&net, None)?;
+    /// let [x, y, z] = eg.limit().0;
+    /// assert!(x.abs() < 1e-14 && y.abs() < 1e-14 && z > 0.0);
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     #[inline]
     pub fn limit(&self) -> Point3<R> {
         self.net().c0
@@ -280,7 +348,9 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
 
     /// Patch `k` of the last step's ring (§9): sector `k / 3`, piece `k % 3`
     /// (0: `[½,1]×[0,½]`, 1: `[0,½]×[½,1]`, 2: `[½,1]²` of that sector, in
-    /// level-0 c-units × 2^−(level−1)). [`Error::OutOfDomain`] for `k ≥ ring_len()`.
+    /// level-0 c-units × 2^−(level−1)); `u` along `x`, `v` along `y`.
+    /// [`Error::OutOfDomain`] for `k ≥ ring_len()` (every `k` before the
+    /// first step).
     pub fn ring_patch(&self, k: usize) -> Result<BiquarticPatch<R>, Error> {
         if k >= self.ring_len() {
             return Err(Error::OutOfDomain);
@@ -299,7 +369,40 @@ impl<'t, R: Real> EgSubdivision<'t, R> {
         Ok(PatchDomain::of_ring_patch(self.level, k))
     }
 
-    /// All patches of the last step's ring, in index order.
+    /// All [`Self::ring_len`] patches of the last step's ring, in ring order
+    /// ([`Self::ring_patch`]: `k = 3·sector + piece`); none before the first
+    /// step.
+    ///
+    /// ```
+    /// # use capdiv::eg::{CNet, EgSubdivision};
+    /// # let n = 5;
+    /// # let mut nodes = Vec::new();
+    /// # for s in 0..n {
+    /// #     let a = s as f64 * core::f64::consts::TAU / n as f64;
+    /// #     for (x, y) in [(1.0, 0.0), (2.0, 0.0), (1.0, 1.0), (2.0, 1.0), (1.0, 2.0), (2.0, 2.0)] {
+    /// #         let (t, r) = (a + f64::atan2(y, x) * 4.0 / n as f64, f64::hypot(x, y));
+    /// #         nodes.push([r * t.cos(), r * t.sin(), 0.1 * r * r]);
+    /// #     }
+    /// # }
+    /// # let net = CNet::new([0.0; 3], &nodes)?;
+    /// let mut eg = EgSubdivision::new(&net, None)?;
+    /// eg.step()?;
+    /// let ring: Vec<_> = eg.ring_patches().collect();
+    /// assert_eq!(ring.len(), eg.ring_len());
+    /// for (k, patch) in ring.iter().enumerate() {
+    ///     assert_eq!(eg.ring_patch(k).as_ref(), Ok(patch));
+    /// }
+    /// // A sector's pieces join: piece 0 ([½,1]×[0,½]) meets piece 2 ([½,1]²)
+    /// // along y = ½, piece 1 ([0,½]×[½,1]) meets piece 2 along x = ½.
+    /// for s in 0..5 {
+    ///     let [p0, p1, p2] = [&ring[3 * s], &ring[3 * s + 1], &ring[3 * s + 2]];
+    ///     for t in [0.0, 0.3, 1.0] {
+    ///         assert!(p0.position(t, 1.0)?.max_abs_diff(p2.position(t, 0.0)?) < 1e-12);
+    ///         assert!(p1.position(1.0, t)?.max_abs_diff(p2.position(0.0, t)?) < 1e-12);
+    ///     }
+    /// }
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn ring_patches(&self) -> EgRingPatches<'_, 't, R> {
         EgRingPatches {
             sub: self,

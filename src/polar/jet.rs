@@ -32,6 +32,27 @@ impl<R: Real> PoleJet<R> {
     /// The coefficients overflow only for nets with coordinates above
     /// `MAX/(3·N)` (every coefficient is below `3·m` for coordinates below
     /// `m`, the Fourier sums below `2·N·m`); [`Self::finite`] checks.
+    ///
+    /// ```
+    /// use capdiv::{FirstStep, Point3, PolarNet, PoleJet};
+    /// // A rotationally symmetric configuration (the paraboloid z = r²/10):
+    /// // the limit lies on the axis, p0 = 2/3 q00 + 1/3 A (§4, Table 1).
+    /// let links: Vec<Vec<[f64; 3]>> = (1..=5)
+    ///     .map(|i| (0..6).map(|j| {
+    ///         let t = core::f64::consts::TAU * j as f64 / 6.0;
+    ///         let r = i as f64;
+    ///         [r * t.cos(), r * t.sin(), 0.1 * r * r]
+    ///     }).collect())
+    ///     .collect();
+    /// let mut net: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
+    /// let jet = PoleJet::of(&net).finite()?;
+    /// assert!(jet.limit().max_abs_diff(Point3([0.0, 0.0, 0.1 / 3.0])) < 1e-15);
+    /// assert!(jet.geometry()?.normal.max_abs_diff(Point3([0.0, 0.0, 1.0])) < 1e-12);
+    /// // A step does not move the limit.
+    /// net.step(FirstStep::Uniform)?;
+    /// assert!(PoleJet::of(&net).limit().max_abs_diff(jet.limit()) < 1e-15);
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn of<S: NetStorage<R>>(net: &PolarNetInner<R, S>) -> Self {
         let v = net.view();
         Self::from_parts(v.head.pole, v.link(1).unwrap_or(&[]), v.roots())

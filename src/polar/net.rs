@@ -242,6 +242,29 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     /// [`PolarNetInner::new_in`] with inline storage. The net is returned by
     /// value: where stack is scarce (a microcontroller), keep an
     /// [`Self::empty`] net in a `static` and [`Self::reset`] it instead.
+    ///
+    /// ```
+    /// use capdiv::{Error, PolarNet};
+    /// // Valence 6: link i (1..=5) is the circle of radius i at height i²/10.
+    /// let links: Vec<Vec<[f64; 3]>> = (1..=5)
+    ///     .map(|i| (0..6).map(|j| {
+    ///         let t = core::f64::consts::TAU * j as f64 / 6.0;
+    ///         let r = i as f64;
+    ///         [r * t.cos(), r * t.sin(), 0.1 * r * r]
+    ///     }).collect())
+    ///     .collect();
+    /// // Capacity 12: valence 6 and one step.
+    /// let net: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
+    /// assert_eq!((net.valence(), net.level(), net.links_held()), (6, 0, 5));
+    /// assert_eq!(net.link(2).unwrap()[0].0, [2.0, 0.0, 0.4]);
+    /// // Valence 13 does not fit: a typed error, nothing built.
+    /// let too_big: Vec<Vec<[f64; 3]>> = vec![vec![[1.0, 0.0, 0.0]; 13]; 2];
+    /// assert_eq!(
+    ///     PolarNet::<f64, 12>::new([0.0; 3], &too_big).unwrap_err(),
+    ///     Error::CapacityExceeded { needed: 13, capacity: 12 }
+    /// );
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn new<L: AsRef<[[R; 3]]>>(pole: [R; 3], links: &[L]) -> Result<Self, Error> {
         Self::new_in(pole, links, ArrayStorage::new())
     }
@@ -275,6 +298,30 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
     /// [`Self::capacity`]), [`Error::ValenceUnsupported`] (odd part of `n`
     /// above [`crate::trig::MAX_ODD_PART`]). On error nothing has been written
     /// to the storage.
+    ///
+    /// A [`PolarNetBuf`] over the caller's slices, sized at run time, gives
+    /// the numbers of a [`PolarNet`] bit for bit:
+    ///
+    /// ```
+    /// use capdiv::{polar::capacity_for, FirstStep, Point3, PolarNet, PolarNetBuf, SliceStorage};
+    /// # let links: Vec<Vec<[f64; 3]>> = (1..=5)
+    /// #     .map(|i| (0..6).map(|j| {
+    /// #         let t = core::f64::consts::TAU * j as f64 / 6.0;
+    /// #         let r = i as f64;
+    /// #         [r * t.cos(), r * t.sin(), 0.1 * r * r]
+    /// #     }).collect())
+    /// #     .collect();
+    /// let cap = capacity_for(6, 1).unwrap(); // valence 6, one step: 12
+    /// let mut ls = vec![Point3::ZERO; SliceStorage::<f64>::links_len(cap)];
+    /// let mut rs = vec![[0.0; 2]; SliceStorage::<f64>::roots_len(cap)];
+    /// let mut buf = PolarNetBuf::new_in([0.0; 3], &links, SliceStorage::new(&mut ls, &mut rs))?;
+    /// let mut inline: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
+    /// buf.step(FirstStep::Uniform)?;
+    /// inline.step(FirstStep::Uniform)?;
+    /// assert_eq!(buf.capacity(), 12);
+    /// assert!(buf.ring_patches().eq(inline.ring_patches()));
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     pub fn new_in<L: AsRef<[[R; 3]]>>(
         pole: [R; 3],
         links: &[L],
@@ -382,6 +429,31 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
     /// [`Error::NonFinite`] when a coordinate of the pole or links 1..3
     /// exceeds `MAX/(16·N)` in magnitude (the step could overflow); the net
     /// is then unchanged.
+    ///
+    /// ```
+    /// use capdiv::{Error, FirstStep, PolarNet};
+    /// # let links: Vec<Vec<[f64; 3]>> = (1..=5)
+    /// #     .map(|i| (0..6).map(|j| {
+    /// #         let t = core::f64::consts::TAU * j as f64 / 6.0;
+    /// #         let r = i as f64;
+    /// #         [r * t.cos(), r * t.sin(), 0.1 * r * r]
+    /// #     }).collect())
+    /// #     .collect();
+    /// let mut net: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
+    /// net.step(FirstStep::Uniform)?;
+    /// assert_eq!((net.valence(), net.level()), (12, 1));
+    /// // Rule (1) of docs/math/c2ps.md §2: the new pole is 3/4 q00 + 1/4 A,
+    /// // A the 1-link's average, here (0, 0, 0.1).
+    /// assert!(net.pole().max_abs_diff(capdiv::Point3([0.0, 0.0, 0.025])) < 1e-15);
+    /// // Valence 24 would exceed the capacity: an error, the net unchanged.
+    /// let before = net.link(1).unwrap().to_vec();
+    /// assert_eq!(
+    ///     net.step(FirstStep::Uniform),
+    ///     Err(Error::CapacityExceeded { needed: 24, capacity: 12 })
+    /// );
+    /// assert_eq!((net.valence(), net.link(1).unwrap()), (12, &before[..]));
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     #[inline]
     pub fn step(&mut self, first: FirstStep) -> Result<(), Error> {
         c2ps_step(&mut self.head, self.storage.parts_mut(), first)
@@ -437,6 +509,28 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
     /// All [`Self::ring_len`] patches of the current ring, in ring order
     /// ([`Self::ring_patch`]: span 0 columns `0..N`, then span 1); none
     /// while the net holds fewer than 5 links.
+    ///
+    /// ```
+    /// use capdiv::{FirstStep, PolarNet};
+    /// # let links: Vec<Vec<[f64; 3]>> = (1..=5)
+    /// #     .map(|i| (0..6).map(|j| {
+    /// #         let t = core::f64::consts::TAU * j as f64 / 6.0;
+    /// #         let r = i as f64;
+    /// #         [r * t.cos(), r * t.sin(), 0.1 * r * r]
+    /// #     }).collect())
+    /// #     .collect();
+    /// // From the 1- and 2-link only: no ring until 5 links are reached.
+    /// let mut net: PolarNet<f64, 24> = PolarNet::new([0.0; 3], &links[..2])?;
+    /// assert_eq!((net.ring_len(), net.ring_patches().len()), (0, 0));
+    /// net.step(FirstStep::Uniform)?; // 3 links
+    /// net.step(FirstStep::Uniform)?; // 5 links, valence 24
+    /// let ring = net.ring_patches();
+    /// assert_eq!(ring.len(), 2 * 24);
+    /// for (k, patch) in ring.enumerate() {
+    ///     assert_eq!(net.ring_patch(k), Ok(patch));
+    /// }
+    /// # Ok::<(), capdiv::Error>(())
+    /// ```
     #[inline]
     pub fn ring_patches(&self) -> PolarRingPatches<'_, R> {
         match self.view().ring() {

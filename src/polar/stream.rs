@@ -115,6 +115,38 @@ impl<R> StreamedPatch<R> {
 /// The caller-owned state of a streaming sweep to depth at most `D`: one
 /// window of 4 columns per level `0..=D` (see the [module docs](self) for
 /// the size). `const`-constructible, so it can live in a `static` (`.bss`).
+///
+/// The sweep delivers the in-place net's ring patches of every level,
+/// without storing a level:
+///
+/// ```
+/// use capdiv::{FirstStep, PolarNet, PolarStream, StreamOptions};
+/// let links: Vec<Vec<[f64; 3]>> = (1..=5)
+///     .map(|i| (0..6).map(|j| {
+///         let t = core::f64::consts::TAU * j as f64 / 6.0;
+///         let r = i as f64;
+///         [r * t.cos(), r * t.sin(), 0.1 * r * r + 0.05 * j as f64]
+///     }).collect())
+///     .collect();
+/// let mut state = PolarStream::<f64, 1>::empty();
+/// let sweep = state.sweep([0.0; 3], &links, StreamOptions::depth(1).first(FirstStep::Uniform))?;
+/// assert_eq!(sweep.len(), 2 * 6 + 2 * 12); // the rings of levels 0 and 1
+/// let streamed: Vec<_> = sweep.collect();
+/// // The same patches as a net refined in place, level by level.
+/// let mut net: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
+/// for level in 0..=1 {
+///     for p in streamed.iter().filter(|p| p.level == level) {
+///         let want = net.ring_patch(p.ring_index())?;
+///         for (a, b) in p.patch.points.iter().flatten().zip(want.points.iter().flatten()) {
+///             assert!(a.max_abs_diff(*b) < 1e-12);
+///         }
+///     }
+///     if level == 0 {
+///         net.step(FirstStep::Uniform)?;
+///     }
+/// }
+/// # Ok::<(), capdiv::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct PolarStream<R, const D: usize> {
     level0: Level<R>,
