@@ -13,7 +13,8 @@
 //! Bézier patch.
 //!
 //! [`tessellate`] samples every patch on a `grid × grid` parameter grid
-//! (`(u, v) = (a/grid, b/grid)`, [`capdiv::TensorPatch::evaluate`]):
+//! (`(u, v) = (a/grid, b/grid)`, [`capdiv::TensorPatch::evaluate`]), laid
+//! out as [`layout`] says under [`layout::Sampling::Uniform`]:
 //!
 //! - an edge whose [`PatchRecord::finer`] bit is set is sampled at `2·grid`
 //!   segments (the midpoints `(2c+1)/(2·grid)` added), so its points are
@@ -46,6 +47,7 @@
 //! 0-based `u32`. [`write_obj`] writes Wavefront OBJ text.
 
 mod check;
+pub mod layout;
 mod obj;
 mod sample;
 pub mod stream;

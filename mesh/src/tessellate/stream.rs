@@ -317,8 +317,8 @@ impl<R: Real> StreamTessellator<R> {
         self.summary
     }
 
-    /// Turns and pins of the current patch's samples, from the layout of
-    /// [`Raw::push`]: `(n+1)²` grid points (`a` along `u` after `a`), then
+    /// Turns and pins of the current patch's samples, from their layout
+    /// ([`super::layout`]): `(n+1)²` grid points (`a` along `u` after `a`), then
     /// `n` midpoints per finer edge in edge order, then the hole point. A
     /// boundary edge adds the 2 of the outside to its inner samples, and 1 to
     /// each end that is a boundary corner of two patches (whose other
