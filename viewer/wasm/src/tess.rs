@@ -1,6 +1,12 @@
-//! Per-vertex tessellation of the evaluated patches at exact parameters:
-//! every patch is sampled on its own `g × g` grid of `(u, v)` in its Bézier
-//! square, and each sample carries what [`PatchGeometry::jet`] and
+//! Per-vertex tessellation of the evaluated patches at exact parameters, on
+//! the mesh crate's one patch layout (`capdiv_mesh::tessellate::layout`):
+//! every patch is sampled where [`PatchLayout`] puts its samples under
+//! [`Sampling::Halving`] — its own grid of `(u, v)` in its Bézier square,
+//! `g` segments per side for the coarsest patches and half as many a level
+//! finer (at least 1), so across a ring of a cap, where one patch meets two
+//! of half its size, the coarse patch's edge samples are exactly the fine
+//! patches' ones; a one-segment patch gets the midpoints of its finer edges
+//! instead. Each sample carries what [`PatchGeometry::jet`] and
 //! [`capdiv::SurfaceJet::geometry`] give there — position, unit normal,
 //! Gaussian and mean curvature — the same formulas as the CLI's pictures
 //! (`capdiv_mesh::shade`).
@@ -8,20 +14,18 @@
 //! Patches are not welded: samples on a shared edge are computed once per
 //! patch, at the same parameters, so they coincide (up to rounding) and
 //! carry the same normal and curvature (the surface is C² across patch
-//! edges). A patch `k` levels finer than the surface's coarsest patches gets
-//! `g >> k` segments (at least 1), so across a ring of a cap, where one patch
-//! meets two of half its size, the coarse patch's edge samples are exactly
-//! the fine patches' ones. Patches of one segment (rings under `1/g` of a face)
-//! whose edge meets two half-size patches get that edge's midpoint and a fan
-//! from their centre: no crack either.
+//! edges), and each patch's vertices are one range the page re-uploads
+//! after an edit.
 //!
 //! The cap's last hole (edges flagged in [`PatchRecord::hole`]) is closed by
-//! a fan of triangles to the cap's limit point; those triangles' vertices are
-//! flagged [`HOLE`] (the page marks them in the curvature maps: the hole is
-//! not part of any patch).
+//! the layout's fan of triangles to the cap's limit point, on copies of the
+//! fan's edge samples; those copies and the limit point are flagged
+//! [`HOLE`] (the page marks them in the curvature maps: the hole is not part
+//! of any patch).
 
 use capdiv_mesh::evaluate::{CapRecord, PatchKind, PatchRecord, SurfaceSink};
-use capdiv_mesh::tessellate::PatchGeometry;
+use capdiv_mesh::tessellate::layout::{PatchLayout, SampleAt, Sampling};
+use capdiv_mesh::tessellate::{Face, PatchGeometry};
 
 /// Flag: the vertex belongs to a hole fan.
 pub const HOLE: u8 = 1;
@@ -72,17 +76,15 @@ impl Surface {
         self.hi = [f64::NEG_INFINITY; 3];
     }
 
-    fn push(&mut self, p: [f64; 3], n: [f64; 3], k: f64, h: f64, flags: u8) -> u32 {
-        let i = self.position.len() as u32;
-        for (c, &x) in p.iter().enumerate() {
-            widen(&mut self.lo, &mut self.hi, c, x);
-        }
-        self.position.push(p);
-        self.normal.push(n);
-        self.gaussian.push(k);
-        self.mean.push(h);
-        self.flags.push(flags);
-        i
+    /// Appends `count` vertices to be [`Surface::set`] (the box is not
+    /// widened for them).
+    fn grow(&mut self, count: usize) {
+        let len = self.len() + count;
+        self.position.resize(len, [0.0; 3]);
+        self.normal.resize(len, [0.0; 3]);
+        self.gaussian.resize(len, 0.0);
+        self.mean.resize(len, 0.0);
+        self.flags.resize(len, 0);
     }
 
     /// Sets vertex `i`.
@@ -95,18 +97,6 @@ impl Surface {
         self.gaussian[i] = k;
         self.mean[i] = h;
         self.flags[i] = flags;
-    }
-
-    /// Appends a copy of vertex `src` flagged [`HOLE`]. The box already
-    /// holds its position.
-    fn push_copy(&mut self, src: usize) -> u32 {
-        let i = self.position.len() as u32;
-        self.position.push(self.position[src]);
-        self.normal.push(self.normal[src]);
-        self.gaussian.push(self.gaussian[src]);
-        self.mean.push(self.mean[src]);
-        self.flags.push(self.flags[src] | HOLE);
-        i
     }
 
     /// Vertex `dst` becomes a copy of `src` flagged [`HOLE`].
@@ -136,14 +126,8 @@ impl Surface {
         }
     }
 
-    /// Appends the sample `(u, v)` of `g`.
-    fn sample(&mut self, g: &PatchGeometry<f64>, u: f64, v: f64) -> u32 {
-        let (p, n, k, h, f) = Self::jet(g, u, v);
-        self.push(p, n, k, h, f)
-    }
-
-    /// Rewrites vertex `i` with the sample `(u, v)` of `g`.
-    fn resample(&mut self, i: usize, g: &PatchGeometry<f64>, u: f64, v: f64) {
+    /// Sets vertex `i` to the sample `(u, v)` of `g`.
+    fn sample(&mut self, i: usize, g: &PatchGeometry<f64>, u: f64, v: f64) {
         let (p, n, k, h, f) = Self::jet(g, u, v);
         self.set(i, p, n, k, h, f);
     }
@@ -172,18 +156,7 @@ fn widen(lo: &mut [f64; 3], hi: &mut [f64; 3], c: usize, x: f64) {
     }
 }
 
-/// Segments per side of a patch `level` levels below `base` (see the module
-/// doc): `grid >> (level − base)`, at least 1.
-pub fn segments(grid: usize, base: u32, level: u32) -> usize {
-    let k = level.saturating_sub(base);
-    if k >= usize::BITS {
-        1
-    } else {
-        (grid >> k).max(1)
-    }
-}
-
-/// Where one patch's samples are, and what they were computed from.
+/// Where one patch's vertices are, and what they were computed from.
 #[derive(Clone, Debug)]
 struct Slot {
     geometry: PatchGeometry<f64>,
@@ -194,6 +167,87 @@ struct Slot {
     /// First vertex, and one past its last (hole fans included).
     first: u32,
     end: u32,
+}
+
+/// One patch's vertices: its layout's samples, then copies of the samples
+/// its hole fans use.
+#[derive(Clone, Debug, Default)]
+struct PatchVertices {
+    layout: PatchLayout,
+    /// The samples the hole fans use, in the order of their first use.
+    fan_samples: Vec<u32>,
+}
+
+impl PatchVertices {
+    /// The vertices of `p` under `sampling`.
+    fn set(&mut self, sampling: &Sampling, p: &PatchRecord<f64>) {
+        self.layout.set(sampling, p);
+        self.fan_samples.clear();
+        let Some(h) = self.hole_sample() else {
+            return;
+        };
+        for f in &self.layout.faces {
+            let c = f.corners();
+            if c.contains(&h) {
+                for &s in c.iter().filter(|&&s| s != h) {
+                    if !self.fan_samples.contains(&s) {
+                        self.fan_samples.push(s);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The hole point's sample, if the patch has hole edges.
+    fn hole_sample(&self) -> Option<u32> {
+        let last = self.layout.samples.len().checked_sub(1)?;
+        (self.layout.samples[last] == SampleAt::HolePoint).then_some(last as u32)
+    }
+
+    /// Vertices per patch.
+    fn len(&self) -> usize {
+        self.layout.samples.len() + self.fan_samples.len()
+    }
+
+    /// Writes the vertices of `p` from vertex `first` on.
+    fn write(&self, p: &PatchRecord<f64>, first: usize, s: &mut Surface) {
+        for (k, &at) in self.layout.samples.iter().enumerate() {
+            if let Some((u, v)) = self.layout.parameters(at) {
+                s.sample(first + k, &p.geometry, u, v);
+            }
+        }
+        let copies = first + self.layout.samples.len();
+        for (c, &src) in self.fan_samples.iter().enumerate() {
+            s.copy_sample(first + src as usize, copies + c);
+        }
+        if let Some(h) = self.hole_sample() {
+            let (n, k, mean, f) = hole_centre(s, copies..copies + self.fan_samples.len());
+            s.set(first + h as usize, p.hole_point.0, n, k, mean, f);
+        }
+    }
+
+    /// Appends the triangles, on vertices from `first` on: a quad's as
+    /// `(a, b, c), (a, c, d)`, a fan triangle's on the copies.
+    fn triangles(&self, first: u32, out: &mut Vec<u32>) {
+        let h = self.hole_sample();
+        let copies = first + self.layout.samples.len() as u32;
+        for f in &self.layout.faces {
+            let fan = h.is_some_and(|h| f.corners().contains(&h));
+            let vertex = |s: u32| {
+                let copy = fan
+                    .then(|| self.fan_samples.iter().position(|&c| c == s))
+                    .flatten();
+                copy.map_or(first + s, |c| copies + c as u32)
+            };
+            match *f {
+                Face::Quad([a, b, c, d]) => {
+                    let [a, b, c, d] = [a, b, c, d].map(vertex);
+                    out.extend_from_slice(&[a, b, c, a, c, d]);
+                }
+                Face::Tri(t) => out.extend_from_slice(&t.map(vertex)),
+            }
+        }
+    }
 }
 
 /// The samples of an evaluation, as a [`SurfaceSink`]: the first evaluation
@@ -211,6 +265,8 @@ pub struct Tessellator {
     /// A patch did not match the layout (another plan): rebuild.
     mismatch: bool,
     slots: Vec<Slot>,
+    /// The current patch's vertices.
+    vertices: PatchVertices,
     /// The sampled surface.
     pub surface: Surface,
     /// Vertices rewritten by the last evaluation: `dirty.0..dirty.1`.
@@ -258,61 +314,21 @@ impl Tessellator {
         true
     }
 
+    /// The sampling of the current plan.
+    fn sampling(&self) -> Sampling {
+        Sampling::Halving {
+            grid: self.grid,
+            base: self.base,
+        }
+    }
+
     fn push_patch(&mut self, p: &PatchRecord<f64>) {
-        let first = self.surface.len() as u32;
-        let g = segments(self.grid, self.base, p.level);
-        let side = g as u32 + 1;
-        for a in 0..=g {
-            for b in 0..=g {
-                self.surface
-                    .sample(&p.geometry, a as f64 / g as f64, b as f64 / g as f64);
-            }
-        }
-        let at = |a: u32, b: u32| first + a * side + b;
-        let extra = extra_samples(g, p.finer);
-        if extra.is_empty() {
-            for a in 0..g as u32 {
-                for b in 0..g as u32 {
-                    self.surface.indices.extend_from_slice(&[
-                        at(a, b),
-                        at(a + 1, b),
-                        at(a + 1, b + 1),
-                        at(a, b),
-                        at(a + 1, b + 1),
-                        at(a, b + 1),
-                    ]);
-                }
-            }
-        } else {
-            // One cell with midpoints on its finer edges: a fan from the
-            // centre over its boundary, counter-clockwise.
-            let base = self.surface.len() as u32;
-            for &(u, v) in &extra {
-                self.surface.sample(&p.geometry, u, v);
-            }
-            let centre = base + extra.len() as u32 - 1;
-            let mut ring = Vec::with_capacity(8);
-            let mut mid = base;
-            for (e, corner) in [at(0, 0), at(1, 0), at(1, 1), at(0, 1)]
-                .into_iter()
-                .enumerate()
-            {
-                ring.push(corner);
-                if p.finer & (1 << e) != 0 {
-                    ring.push(mid);
-                    mid += 1;
-                }
-            }
-            for k in 0..ring.len() {
-                let next = ring[(k + 1) % ring.len()];
-                self.surface
-                    .indices
-                    .extend_from_slice(&[ring[k], next, centre]);
-            }
-        }
-        if p.hole != 0 {
-            hole_fans(p, g, at, &mut self.surface);
-        }
+        let first = self.surface.len();
+        self.vertices.set(&self.sampling(), p);
+        self.surface.grow(self.vertices.len());
+        self.vertices.write(p, first, &mut self.surface);
+        self.vertices
+            .triangles(first as u32, &mut self.surface.indices);
         self.kinds[match p.kind {
             PatchKind::Regular => 0,
             PatchKind::Polar => 1,
@@ -325,45 +341,18 @@ impl Tessellator {
             finer: p.finer,
             hole: p.hole,
             hole_point: p.hole_point.0,
-            first,
+            first: first as u32,
             end: self.surface.len() as u32,
         });
     }
 
-    /// Re-samples slot `k` in place from `p` (same layout).
+    /// Re-samples slot `k` in place from `p` (same level and edges, so the
+    /// same layout).
     fn update_patch(&mut self, k: usize, p: &PatchRecord<f64>) {
-        let slot = &self.slots[k];
-        let (first, end) = (slot.first as usize, slot.end as usize);
-        let g = segments(self.grid, self.base, p.level);
-        let s = &mut self.surface;
-        let mut i = first;
-        for a in 0..=g {
-            for b in 0..=g {
-                s.resample(i, &p.geometry, a as f64 / g as f64, b as f64 / g as f64);
-                i += 1;
-            }
-        }
-        for (u, v) in extra_samples(g, p.finer) {
-            s.resample(i, &p.geometry, u, v);
-            i += 1;
-        }
-        if p.hole != 0 {
-            // The fans' vertices follow the grid: per hole edge, copies of
-            // its g + 1 samples and the hole point (as `hole_fans` made them).
-            let side = g + 1;
-            let at = |a: usize, b: usize| first + a * side + b;
-            for e in (0..4u8).filter(|e| p.hole & (1 << e) != 0) {
-                let edge: Vec<usize> = edge_samples(e, g).map(|(a, b)| at(a, b)).collect();
-                for &src in &edge {
-                    s.copy_sample(src, i);
-                    i += 1;
-                }
-                let (n, k, h, f) = hole_centre(s, &edge);
-                s.set(i, p.hole_point.0, n, k, h, f);
-                i += 1;
-            }
-        }
-        debug_assert_eq!(i, end);
+        let (first, end) = (self.slots[k].first as usize, self.slots[k].end as usize);
+        self.vertices.set(&self.sampling(), p);
+        debug_assert_eq!(first + self.vertices.len(), end);
+        self.vertices.write(p, first, &mut self.surface);
         let slot = &mut self.slots[k];
         slot.geometry = p.geometry;
         slot.hole_point = p.hole_point.0;
@@ -393,42 +382,13 @@ impl SurfaceSink<f64> for Tessellator {
     }
 }
 
-/// Samples beyond the grid: a patch of one segment whose edge `e` is met
-/// by two patches of half its size (bit `e` of `finer`) gets that edge's
-/// midpoint — where the two meet — and then its centre, so that it can be
-/// triangulated without a T-junction. (With `g ≥ 2` segments the
-/// neighbours' samples are already among the patch's, `g/2` each.)
-fn extra_samples(g: usize, finer: u8) -> Vec<(f64, f64)> {
-    if g != 1 || finer == 0 {
-        return Vec::new();
-    }
-    let mut out: Vec<(f64, f64)> = [(0.5, 0.0), (1.0, 0.5), (0.5, 1.0), (0.0, 0.5)]
-        .into_iter()
-        .enumerate()
-        .filter(|(e, _)| finer & (1 << e) != 0)
-        .map(|(_, uv)| uv)
-        .collect();
-    out.push((0.5, 0.5));
-    out
-}
-
-/// Grid coordinates `(a, b)` of edge `e`'s samples, in the patch's
-/// counter-clockwise boundary order.
-fn edge_samples(e: u8, g: usize) -> impl Iterator<Item = (usize, usize)> {
-    (0..=g).map(move |i| match e {
-        0 => (i, 0),
-        1 => (g, i),
-        2 => (g - i, g),
-        _ => (0, g - i),
-    })
-}
-
-/// The hole point's attributes: the mean of the edge samples' normals and
-/// curvatures (the limit point has none of a patch).
-fn hole_centre(s: &Surface, edge: &[usize]) -> ([f64; 3], f64, f64, u8) {
+/// The hole point's attributes: the mean of the fan's edge samples' normals
+/// and curvatures (vertices `copies`; the limit point has none of a patch).
+fn hole_centre(s: &Surface, copies: core::ops::Range<usize>) -> ([f64; 3], f64, f64, u8) {
     let mut n = [0.0; 3];
     let (mut k, mut h) = (0.0, 0.0);
-    for &i in edge {
+    let count = copies.len() as f64;
+    for i in copies {
         for (acc, x) in n.iter_mut().zip(s.normal[i]) {
             *acc += x;
         }
@@ -436,7 +396,6 @@ fn hole_centre(s: &Surface, edge: &[usize]) -> ([f64; 3], f64, f64, u8) {
         h += s.mean[i];
     }
     let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    let count = edge.len() as f64;
     if len > 0.0 && len.is_finite() {
         (
             [n[0] / len, n[1] / len, n[2] / len],
@@ -446,22 +405,6 @@ fn hole_centre(s: &Surface, edge: &[usize]) -> ([f64; 3], f64, f64, u8) {
         )
     } else {
         ([0.0; 3], k / count, h / count, HOLE | DEGENERATE)
-    }
-}
-
-/// The triangles from each hole edge of `p` to its hole point, on copies of
-/// the edge's samples (flagged [`HOLE`]).
-fn hole_fans(p: &PatchRecord<f64>, g: usize, at: impl Fn(u32, u32) -> u32, out: &mut Surface) {
-    for e in (0..4u8).filter(|e| p.hole & (1 << e) != 0) {
-        let edge: Vec<usize> = edge_samples(e, g)
-            .map(|(a, b)| at(a as u32, b as u32) as usize)
-            .collect();
-        let copies: Vec<u32> = edge.iter().map(|&s| out.push_copy(s)).collect();
-        let (n, k, h, f) = hole_centre(out, &edge);
-        let centre = out.push(p.hole_point.0, n, k, h, f);
-        for w in copies.windows(2) {
-            out.indices.extend_from_slice(&[w[1], w[0], centre]);
-        }
     }
 }
 
@@ -498,18 +441,10 @@ mod tests {
 
     fn record(level: u32, hole: u8) -> PatchRecord<f64> {
         PatchRecord {
-            kind: PatchKind::Regular,
             level,
-            face: 0,
-            corner: None,
-            domain: [0.0, 1.0, 0.0, 1.0],
-            geometry: paraboloid(),
-            finer: 0,
             hole,
             hole_point: Point3([-1.0, -1.0, 0.0]),
-            boundary: 0,
-            cap: None,
-            uv: None,
+            ..PatchRecord::new(PatchKind::Regular, paraboloid())
         }
     }
 
@@ -569,47 +504,32 @@ mod tests {
     }
 
     #[test]
-    fn finer_levels_halve_the_grid_and_keep_edge_samples_shared() {
-        assert_eq!(segments(8, 0, 0), 8);
-        assert_eq!(segments(8, 1, 2), 4);
-        assert_eq!(segments(8, 0, 3), 1);
-        assert_eq!(segments(8, 0, 9), 1);
-        assert_eq!(segments(8, 0, 200), 1);
-        assert_eq!(segments(8, 3, 0), 8);
-        // Level-1 patch halves: the coarse edge v = 0 has samples at
-        // u = a/8; the two half patches [0,½] and [½,1] (4 segments each) at
-        // ½·b/4 and ½ + ½·b/4 — the same parameters.
-        let coarse: Vec<f64> = (0..=8).map(|a| a as f64 / 8.0).collect();
-        let fine: Vec<f64> = (0..2)
-            .flat_map(|h| (0..=4).map(move |b| 0.5 * h as f64 + 0.5 * b as f64 / 4.0))
-            .collect();
-        for f in fine {
-            assert!(coarse.contains(&f));
-        }
-    }
-
-    #[test]
     fn one_segment_patches_take_the_midpoints_of_finer_edges() {
         let mut r = record(3, 0);
         r.finer = 0b0011; // edges v = 0 and u = 1
         let mut s = Surface::default();
+        // Level 3 at grid 8: 8 >> 3 = 1 segment, against two one-segment
+        // patches along each finer edge.
         tessellate(&[r], 0, 8, &mut s);
-        // 4 corners, 2 midpoints, the centre; a fan of 6 triangles.
-        assert_eq!(s.len(), 7);
-        // z = x² + y² at (½, 0), (1, ½), (½, ½), to rounding.
+        // 4 corners (a along u after a: (0,0), (0,1), (1,0), (1,1)) and the
+        // midpoints of edges 0 and 1; the cell is the hexagon
+        // 0, m0, 2, m1, 3, 1 fanned from its first midpoint m0 (vertex 4):
+        // 6 − 2 = 4 triangles.
+        assert_eq!(s.len(), 6);
+        // z = x² + y² at (½, 0), (1, ½), to rounding.
         let near = |p: [f64; 3], q: [f64; 3]| (0..3).all(|c| (p[c] - q[c]).abs() < 1e-15);
         assert!(near(s.position[4], [0.5, 0.0, 0.25]));
         assert!(near(s.position[5], [1.0, 0.5, 1.25]));
-        assert!(near(s.position[6], [0.5, 0.5, 0.5]));
-        assert_eq!(s.indices.len(), 6 * 3);
+        assert_eq!(s.indices.len(), 4 * 3);
         for tri in s.indices.chunks(3) {
-            assert_eq!(tri[2], 6);
+            assert_eq!(tri[0], 4);
             let p: Vec<[f64; 3]> = tri.iter().map(|&i| s.position[i as usize]).collect();
             let area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
                 - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
             assert!(area > 0.0, "{p:?}");
         }
-        // With two or more segments the grid already has them.
+        // With two or more segments the grid already has them: level 2 is
+        // 2 segments, 3 × 3 samples, no midpoint.
         let mut r = record(2, 0);
         r.finer = 0b0011;
         tessellate(&[r], 0, 8, &mut s);
@@ -621,21 +541,31 @@ mod tests {
         let mut s = Surface::default();
         // Edges u = 0 (bit 3) and v = 0 (bit 0).
         tessellate(&[record(0, 0b1001)], 0, 2, &mut s);
+        // 3 × 3 grid samples and the hole point; the fans over edge v = 0
+        // ((0,0), (1,0), (2,0) in grid steps) and edge u = 0 ((0,2), (0,1),
+        // (0,0)) use 5 distinct samples, each copied once.
         let grid = 9;
-        // Per hole edge: 3 copies and the hole point.
-        assert_eq!(s.len(), grid + 2 * 4);
+        assert_eq!(s.len(), grid + 1 + 5);
+        // 2 × 2 cells of 2 triangles, and 2 fan triangles per hole edge.
         assert_eq!(s.indices.len(), 2 * 2 * 6 + 2 * 2 * 3);
+        // The copies and the hole point.
         let holes = s.flags.iter().filter(|&&f| f & HOLE != 0).count();
-        assert_eq!(holes, 8);
+        assert_eq!(holes, 6);
+        assert_eq!(s.flags[grid], HOLE);
         let fans = &s.indices[24..];
         for tri in fans.chunks(3) {
             assert_eq!(s.position[tri[2] as usize], [-1.0, -1.0, 0.0]);
             // Fan triangles lie on the copies, oriented like the patch seen
             // from +z (the hole point is outside the square, below-left).
+            assert!(tri.iter().all(|&i| s.flags[i as usize] & HOLE != 0));
             let p: Vec<[f64; 3]> = tri.iter().map(|&i| s.position[i as usize]).collect();
             let area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
                 - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
             assert!(area > 0.0, "{p:?}");
+        }
+        // The patch's own triangles keep the unflagged samples.
+        for tri in s.indices[..24].chunks(3) {
+            assert!(tri.iter().all(|&i| s.flags[i as usize] & HOLE == 0));
         }
     }
 }
