@@ -3,7 +3,7 @@
 # scripts/test.sh, which .ci/run runs). Installs what it needs on a fresh
 # machine, then:
 #   1. the kernel for thumbv6m-none-eabi and, with `defmt`, thumbv7em-none-eabihf;
-#   2. fmt and clippy of firmware/, wasm/, embedded-tests/ (own workspaces);
+#   2. fmt and clippy of firmware/, capi-wasm/, embedded-tests/ (own workspaces);
 #   3. the firmware's release builds (M4 and M0): they link only if no panic
 #      path is left in the kernel API they reference (see firmware/src/main.rs);
 #   4. embedded-tests: the firmware under QEMU (every logged number against
@@ -37,7 +37,7 @@ step "kernel: thumbv6m-none-eabi, and the defmt feature on thumbv7em-none-eabihf
 cargo build -q -p capdiv --release --target thumbv6m-none-eabi
 cargo build -q -p capdiv --release --target thumbv7em-none-eabihf --features defmt
 
-for dir in firmware wasm embedded-tests; do
+for dir in firmware capi-wasm embedded-tests; do
   step "fmt + clippy: $dir"
   (cd "$dir" && cargo fmt --check && cargo clippy -q --release --all-targets -- -D warnings)
 done

@@ -68,8 +68,8 @@ for c in "${configs[@]}"; do
   rows+=("| $name | $target | $features | $text | $rodata | $data | $bss | $stack |")
 done
 
-(cd "$root/wasm" && cargo build -q --release)
-wasm_bytes=$(stat -c %s "$root/wasm/target/wasm32-unknown-unknown/release/capdiv_wasm.wasm")
+(cd "$root/capi-wasm" && cargo build -q --release)
+wasm_bytes=$(stat -c %s "$root/capi-wasm/target/wasm32-unknown-unknown/release/capdiv_capi_wasm.wasm")
 figure[wasm.bytes]=$wasm_bytes
 
 {
@@ -79,7 +79,7 @@ figure[wasm.bytes]=$wasm_bytes
   echo
   echo "| WASM module (C²PS + EG C ABI, wasm32-unknown-unknown, opt-level \"s\") | bytes |"
   echo "|---|---:|"
-  echo "| capdiv_wasm.wasm | $wasm_bytes |"
+  echo "| capdiv_capi_wasm.wasm | $wasm_bytes |"
   echo
   echo "All sizes in bytes. Firmware: release profile (opt-level \"s\", LTO, one codegen unit), f32;"
   echo "m4 = Cortex-M4F on QEMU mps2-an386, m0 = Cortex-M0 on QEMU microbit. .bss holds the nets"

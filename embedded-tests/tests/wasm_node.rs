@@ -1,5 +1,5 @@
-//! The WASM module under node: build `wasm/` for
-//! `wasm32-unknown-unknown`, run `wasm/demo.mjs` (which instantiates it with no
+//! The WASM module under node: build `capi-wasm/` for
+//! `wasm32-unknown-unknown`, run `capi-wasm/demo.mjs` (which instantiates it with no
 //! imports, so a panic path left in the module fails here), and recompute
 //! every case — C²PS refinement and pole jet, EG d-nets and rings — with the
 //! native kernel: outputs, status codes and output counts must agree bit for
@@ -15,7 +15,7 @@ use std::time::Duration;
 #[allow(dead_code)]
 mod codes;
 
-/// The module's capacity per link (`wasm/src/lib.rs`, checked against the
+/// The module's capacity per link (`capi-wasm/src/lib.rs`, checked against the
 /// module's own `capdiv_capacity` through the demo's output sizes).
 const CAP: usize = 1536;
 
@@ -224,9 +224,9 @@ fn check(text: &str) -> (usize, usize) {
 
 #[test]
 fn wasm_under_node_matches_native_bit_for_bit() {
-    let dir = repo_root().join("wasm");
+    let dir = repo_root().join("capi-wasm");
     cargo_in(&dir, &["build", "--release"]);
-    let wasm = dir.join("target/wasm32-unknown-unknown/release/capdiv_wasm.wasm");
+    let wasm = dir.join("target/wasm32-unknown-unknown/release/capdiv_capi_wasm.wasm");
     let mut cmd = Command::new("node");
     cmd.arg(dir.join("demo.mjs")).arg(&wasm);
     let run = run_with_limit(cmd, Duration::from_secs(120)).unwrap_or_else(|e| panic!("{e}"));

@@ -1,7 +1,7 @@
 // Loads capdiv's WebAssembly module with node (no npm dependencies) and runs
 // sample polar nets through its C ABI (src/lib.rs).
 //
-//   node wasm/demo.mjs [path/to/capdiv_wasm.wasm]
+//   node capi-wasm/demo.mjs [path/to/capdiv_capi_wasm.wasm]
 //
 // Prints one block per case, every f64 as the 16 hex digits of its bits, so a
 // host test can recompute each case with the native kernel and compare bit for
@@ -14,7 +14,7 @@ import { dirname, join } from "node:path";
 const here = dirname(fileURLToPath(import.meta.url));
 const path =
   process.argv[2] ??
-  join(here, "target/wasm32-unknown-unknown/release/capdiv_wasm.wasm");
+  join(here, "target/wasm32-unknown-unknown/release/capdiv_capi_wasm.wasm");
 const { instance } = await WebAssembly.instantiate(readFileSync(path), {});
 const w = instance.exports;
 
