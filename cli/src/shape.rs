@@ -246,7 +246,7 @@ impl PolarJob<'_> {
             .patches()
             .map(|p| {
                 ShapePatch::ring(
-                    PatchKind::Polar,
+                    PatchKind::C2ps,
                     PatchGeometry::Cubic(p),
                     0,
                     false,
@@ -261,7 +261,7 @@ impl PolarJob<'_> {
                 for (k, p) in net.ring_patches().enumerate() {
                     let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);
                     patches.push(ShapePatch::ring(
-                        PatchKind::Polar,
+                        PatchKind::C2ps,
                         PatchGeometry::Cubic(p),
                         level,
                         true,

@@ -118,7 +118,7 @@ fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, us
     counts.insert("regular", plan.regular.len());
     // A C²PS cap emits levels 1..=depth, each 2 spans of n·2^m columns.
     counts.insert(
-        "polar",
+        "c2ps",
         plan.polar
             .iter()
             .map(|p| (1..=depth).map(|m| 2 * (p.valence << m)).sum::<usize>())
@@ -1002,7 +1002,7 @@ fn domains_follow_the_parameter_conventions() {
     let mut checked = 0;
     for p in out["patches"].as_array().unwrap() {
         let f = &m.faces[p["face"].as_u64().unwrap() as usize];
-        if p["kind"] != "polar" || f.len() != 3 {
+        if p["kind"] != "c2ps" || f.len() != 3 {
             continue;
         }
         let dom: Vec<f64> = p["domain"]

@@ -126,7 +126,7 @@ struct GridSink<'a, R> {
     bases: &'a [u32],
     out: &'a mut [[R; 6]],
     /// C²PS patches (polar coordinates, no ptex counterpart): not sampled.
-    polar: usize,
+    c2ps: usize,
 }
 
 impl<R: Real> GridSink<'_, R> {
@@ -152,8 +152,8 @@ impl<R: Real> GridSink<'_, R> {
 
 impl<R: Real> SurfaceSink<R> for GridSink<'_, R> {
     fn patch(&mut self, p: &PatchRecord<R>) {
-        if p.kind == PatchKind::Polar {
-            self.polar += 1;
+        if p.kind == PatchKind::C2ps {
+            self.c2ps += 1;
             return;
         }
         match &p.geometry {
@@ -211,10 +211,10 @@ fn evaluate_sampled<R: Real>(
     let mut sink = GridSink {
         bases,
         out,
-        polar: 0,
+        c2ps: 0,
     };
     ev.evaluate(plan, at, &mut sink).expect("evaluate");
-    sink.polar
+    sink.c2ps
 }
 
 /// The whole job, its three stages' durations added to `stages`: the
@@ -228,12 +228,12 @@ fn whole_job<R: Real>(mesh: &MeshInput, stages: &mut [Duration; 3]) -> (Vec<[R; 
     let (bases, ptex) = ptex_bases(mesh);
     let at = positions::<R>(mesh, 1.0);
     let mut out = vec![[R::from_f64(f64::NAN); 6]; ptex * GRID * GRID];
-    let polar = evaluate_sampled(&mut ev, &plan, &at, &bases, &mut out);
+    let c2ps = evaluate_sampled(&mut ev, &plan, &at, &bases, &mut out);
     let t3 = Instant::now();
     stages[0] += t1 - t;
     stages[1] += t2 - t1;
     stages[2] += t3 - t2;
-    (out, polar)
+    (out, c2ps)
 }
 
 /// The whole job once in f64, for callgrind's `--toggle-collect`.
@@ -297,7 +297,7 @@ struct Side<R> {
     patches: f64,
     reeval: f64,
     out: Vec<[R; 6]>,
-    polar: usize,
+    c2ps: usize,
 }
 
 fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
@@ -327,7 +327,7 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
             &mut out,
         ));
     });
-    let (out, polar) = whole_job::<R>(mesh, &mut [Duration::ZERO; 3]);
+    let (out, c2ps) = whole_job::<R>(mesh, &mut [Duration::ZERO; 3]);
     Side {
         analysis,
         evaluator,
@@ -336,7 +336,7 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
         patches,
         reeval,
         out,
-        polar,
+        c2ps,
     }
 }
 
@@ -622,7 +622,7 @@ fn print_tables(rows: &[Row]) {
             r.cross.2,
             o("f64_samples"),
             o("f32_samples"),
-            r.c64.polar,
+            r.c64.c2ps,
         );
     }
 }

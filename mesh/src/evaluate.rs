@@ -34,7 +34,7 @@ pub enum PatchKind {
     /// Uniform bicubic B-spline of a regular face.
     Regular,
     /// A C²PS ring patch.
-    Polar,
+    C2ps,
     /// An EG ring patch (bi-quartic).
     Eg,
     /// A Catmull-Clark ring patch.
@@ -46,7 +46,7 @@ impl PatchKind {
     pub fn id(self) -> &'static str {
         match self {
             PatchKind::Regular => "regular",
-            PatchKind::Polar => "polar",
+            PatchKind::C2ps => "c2ps",
             PatchKind::Eg => "eg",
             PatchKind::CatmullClark => "catmull-clark",
         }
@@ -592,7 +592,7 @@ impl<R: Real> Scratch<R> {
                         [r0 - 1.0, r1 - 1.0, v0, v1]
                     };
                     sink.patch(&record(
-                        PatchKind::Polar,
+                        PatchKind::C2ps,
                         m + p.prior_steps,
                         &chart,
                         rect,

@@ -174,7 +174,7 @@ impl FaceVarying {
     /// For a C²PS patch in polar coordinates: the triangle's UVs at the
     /// pole, the next and the previous corner.
     fn polar_triangle(&self, p: &PatchRecord<impl Copy>) -> Option<[[f64; 2]; 3]> {
-        if p.kind != PatchKind::Polar {
+        if p.kind != PatchKind::C2ps {
             return None;
         }
         let pole = *self.poles.get(p.cap? as usize)?;

@@ -53,7 +53,7 @@ fn coverage(plan: &SurfacePlan<'_>, c: &Collect<f64>) -> HashMap<(u32, Option<u8
     for p in &c.patches {
         assert_ne!(
             p.kind,
-            PatchKind::Polar,
+            PatchKind::C2ps,
             "coverage is checked on meshes without poles"
         );
         let [u0, u1, v0, v1] = p.domain;

@@ -155,7 +155,7 @@ fn hole_points_take_the_uv_of_the_caps_centre_in_the_patchs_face() {
             for p in sink
                 .0
                 .iter()
-                .filter(|p| p.hole != 0 && p.kind != PatchKind::Polar)
+                .filter(|p| p.hole != 0 && p.kind != PatchKind::C2ps)
             {
                 let Some(cap) = p.cap.and_then(|c| sink.1.iter().find(|r| r.index == c)) else {
                     continue;
@@ -207,7 +207,7 @@ fn every_patch_carries_opensubdivs_uvs_over_its_domain() {
         let params = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.3, 0.7)];
         let mut queries = Vec::new();
         let mut ours = Vec::new();
-        for p in sink.0.iter().filter(|p| p.kind != PatchKind::Polar) {
+        for p in sink.0.iter().filter(|p| p.kind != PatchKind::C2ps) {
             kinds.insert(p.kind);
             let uv = fv.patch(p);
             let [u0, u1, v0, v1] = p.domain;
@@ -274,7 +274,7 @@ fn polar_patches_take_their_triangles_uvs_along_the_spokes() {
     let mut worst = 0.0f64;
     let mut swapped = 0.0f64;
     let mut polar = 0;
-    for p in sink.0.iter().filter(|p| p.kind == PatchKind::Polar) {
+    for p in sink.0.iter().filter(|p| p.kind == PatchKind::C2ps) {
         let capdiv_mesh::tessellate::PatchGeometry::Cubic(g) = &p.geometry else {
             panic!("polar patches are bicubic");
         };

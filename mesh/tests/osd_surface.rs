@@ -93,7 +93,7 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
     let mut ours = Vec::new();
     // C²PS patches in fan triangles are given in polar coordinates, which
     // have no ptex counterpart: not asked.
-    for p in c.patches.iter().filter(|p| p.kind != PatchKind::Polar) {
+    for p in c.patches.iter().filter(|p| p.kind != PatchKind::C2ps) {
         let [u0, u1, v0, v1] = p.domain;
         for &s in &PARAMS {
             for &t in &PARAMS {
@@ -118,7 +118,7 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
         match a {
             Answer::Exact(p, _) => {
                 let d = (0..3).map(|i| (p[i] - mine[i]).abs()).fold(0.0, f64::max) / scale;
-                if matches!(kind, PatchKind::Eg | PatchKind::Polar) {
+                if matches!(kind, PatchKind::Eg | PatchKind::C2ps) {
                     caps = caps.max(d);
                     continue;
                 }

@@ -65,7 +65,7 @@ fn polar_case(m: &MeshInput, pole: usize, links: &[Vec<usize>; 3], depth: u32) -
             })
             .collect();
         assert_eq!(want.len(), (2 * links[0].len()) << level);
-        let got = emitted(&out, index, level, PatchKind::Polar);
+        let got = emitted(&out, index, level, PatchKind::C2ps);
         worst = worst.max(match_patch_sets(&want, &got));
     }
     worst

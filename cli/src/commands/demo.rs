@@ -315,8 +315,8 @@ fn one_mesh(
     out += &w(
         "patches",
         format!(
-            "{} ({} regular, {} polar, {} eg, {} catmull-clark)",
-            p.total, p.regular, p.polar, p.eg, p.catmull_clark
+            "{} ({} regular, {} c2ps, {} eg, {} catmull-clark)",
+            p.total, p.regular, p.c2ps, p.eg, p.catmull_clark
         ),
     );
     out += &w(

@@ -70,7 +70,7 @@ where
     let kind = if K == 5 {
         PatchKind::Eg
     } else {
-        PatchKind::Polar
+        PatchKind::C2ps
     };
     PatchRecord {
         level,

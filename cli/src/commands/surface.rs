@@ -528,7 +528,7 @@ impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
         self.finite &= geometry_points(p).all(|q| q.is_finite());
         match p.kind {
             PatchKind::Regular => self.patches.regular += 1,
-            PatchKind::Polar => self.patches.polar += 1,
+            PatchKind::C2ps => self.patches.c2ps += 1,
             PatchKind::Eg => self.patches.eg += 1,
             PatchKind::CatmullClark => self.patches.catmull_clark += 1,
         }
@@ -700,7 +700,7 @@ struct SurfaceJson<'a, R> {
 /// One patch as printed.
 #[derive(Clone, Debug, Serialize)]
 pub struct PatchJson<R> {
-    /// `regular`, `polar`, `eg` or `catmull-clark`.
+    /// `regular`, `c2ps`, `eg` or `catmull-clark`.
     pub kind: &'static str,
     /// 3 (bicubic) or 4 (bi-quartic, EG).
     pub degree: usize,
@@ -934,7 +934,7 @@ pub struct PatchCounts {
     /// B-spline patches of regular faces.
     pub regular: usize,
     /// C²PS ring patches.
-    pub polar: usize,
+    pub c2ps: usize,
     /// EG ring patches.
     pub eg: usize,
     /// Catmull-Clark ring patches.
@@ -1163,10 +1163,10 @@ pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> St
     let header = [
         title.to_string(),
         format!(
-            "{} ({} regular, {} polar, {} eg, {} catmull-clark), {}",
+            "{} ({} regular, {} c2ps, {} eg, {} catmull-clark), {}",
             count(summary.patches.total, "patch", "patches"),
             summary.patches.regular,
-            summary.patches.polar,
+            summary.patches.c2ps,
             summary.patches.eg,
             summary.patches.catmull_clark,
             count(
@@ -1228,8 +1228,8 @@ pub fn report(name: &str, s: &Summary, tess: Option<&TessInfo>, naming: &Naming)
     let p = &s.patches;
     let _ = writeln!(
         t,
-        "  patches      {} ({} regular, {} polar, {} eg, {} catmull-clark)",
-        p.total, p.regular, p.polar, p.eg, p.catmull_clark
+        "  patches      {} ({} regular, {} c2ps, {} eg, {} catmull-clark)",
+        p.total, p.regular, p.c2ps, p.eg, p.catmull_clark
     );
     let caps: Vec<String> = s
         .caps

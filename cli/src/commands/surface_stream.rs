@@ -172,10 +172,10 @@ pub fn obj(
     let p = &summary.patches;
     let trailer = [
         format!(
-            "{} ({} regular, {} polar, {} eg, {} catmull-clark), {}",
+            "{} ({} regular, {} c2ps, {} eg, {} catmull-clark), {}",
             count(p.total, "patch", "patches"),
             p.regular,
-            p.polar,
+            p.c2ps,
             p.eg,
             p.catmull_clark,
             count(

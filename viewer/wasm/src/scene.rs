@@ -485,7 +485,7 @@ impl Scene {
         let _ = write!(
             s,
             "{{\"name\":{},\"vertices\":{},\"faces\":{},\"refinement_steps\":{},\"uncovered_faces\":{},\
-             \"patches\":{{\"regular\":{},\"polar\":{},\"eg\":{},\"catmull-clark\":{}}},\"caps\":[",
+             \"patches\":{{\"regular\":{},\"c2ps\":{},\"eg\":{},\"catmull-clark\":{}}},\"caps\":[",
             json_string(&self.name),
             self.mesh.vertices.len(),
             self.mesh.faces.len(),
@@ -724,7 +724,7 @@ mod tests {
             })
             .unwrap();
             let v: serde_json::Value = serde_json::from_str(&sc.summary()).unwrap();
-            assert_eq!(v["patches"]["polar"], 0, "{name}");
+            assert_eq!(v["patches"]["c2ps"], 0, "{name}");
             assert_eq!(v["patches"]["eg"], 0, "{name}");
             assert!(
                 v["patches"]["catmull-clark"].as_u64().unwrap() > 0,

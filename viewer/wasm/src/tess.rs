@@ -271,7 +271,7 @@ pub struct Tessellator {
     pub surface: Surface,
     /// Vertices rewritten by the last evaluation: `dirty.0..dirty.1`.
     pub dirty: (usize, usize),
-    /// Patches per kind (regular, polar, EG, Catmull-Clark) of the layout.
+    /// Patches per kind (regular, C²PS, EG, Catmull-Clark) of the layout.
     pub kinds: [usize; 4],
     /// The caps of the last evaluation.
     pub caps: Vec<CapRecord<f64>>,
@@ -331,7 +331,7 @@ impl Tessellator {
             .triangles(first as u32, &mut self.surface.indices);
         self.kinds[match p.kind {
             PatchKind::Regular => 0,
-            PatchKind::Polar => 1,
+            PatchKind::C2ps => 1,
             PatchKind::Eg => 2,
             PatchKind::CatmullClark => 3,
         }] += 1;
