@@ -70,7 +70,7 @@ fn bench_level<R: SkReal, const CAP: usize>(c: &mut Criterion, prec: &str, k: u3
         net.step(FirstStep::Uniform).unwrap();
     }
     let n_out = 2 * net.valence();
-    let held = net.links_held();
+    let held = net.link_count();
     let mut g = c.benchmark_group(format!("c2ps_step_{prec}"));
     // Points written: `held` links of n_out points and the pole.
     g.throughput(Throughput::Elements((held * n_out + 1) as u64));

@@ -52,8 +52,8 @@ pub enum Error {
     NotEnoughLinks {
         /// Links needed.
         needed: usize,
-        /// Links held.
-        held: usize,
+        /// Links the net has.
+        present: usize,
     },
     /// The tangent plane is degenerate (zero normal): no unit normal or curvature.
     Degenerate,
@@ -92,8 +92,8 @@ impl core::fmt::Display for Error {
             Error::CapacityExceeded { needed, capacity } => {
                 write!(f, "needs {needed} entries, capacity is {capacity}")
             }
-            Error::NotEnoughLinks { needed, held } => {
-                write!(f, "needs {needed} links, the net holds {held}")
+            Error::NotEnoughLinks { needed, present } => {
+                write!(f, "needs {needed} links, the net has {present}")
             }
             Error::Degenerate => write!(f, "degenerate tangent plane"),
             Error::OutOfDomain => write!(f, "parameter outside [0, 1]"),

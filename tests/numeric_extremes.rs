@@ -153,10 +153,10 @@ fn polar_state<R: Real>(net: &PolarNet<R, POLAR_CAP>) -> Vec<u64> {
     let mut out = vec![
         net.valence() as u64,
         net.level() as u64,
-        net.links_held() as u64,
+        net.link_count() as u64,
     ];
     out.extend(bits([net.pole()]));
-    for i in 1..=net.links_held() {
+    for i in 1..=net.link_count() {
         out.extend(bits(net.link(i).unwrap_or(&[]).iter().copied()));
     }
     out
@@ -165,7 +165,7 @@ fn polar_state<R: Real>(net: &PolarNet<R, POLAR_CAP>) -> Vec<u64> {
 /// Ring patches, jet and geometry of a polar net: each an error or finite.
 fn polar_outputs_finite<R: Real>(net: &PolarNet<R, POLAR_CAP>) -> Result<(), TestCaseError> {
     prop_assert!(finite([net.pole()]), "pole not finite");
-    for i in 1..=net.links_held() {
+    for i in 1..=net.link_count() {
         prop_assert!(finite(net.link(i).unwrap().iter().copied()), "link {i}");
     }
     for p in net.ring_patches() {
@@ -562,7 +562,7 @@ fn rts_step_reports_an_overflowing_net_like_step() {
     };
     let state = |net: &PolarNet<f32, 64>| {
         let links: Vec<Vec<Point3<f32>>> = (1..=5).map(|i| net.link(i).unwrap().to_vec()).collect();
-        (net.pole(), net.valence(), net.links_held(), links)
+        (net.pole(), net.valence(), net.link_count(), links)
     };
 
     let (pole, links) = net_at(1e37);

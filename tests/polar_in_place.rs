@@ -25,11 +25,14 @@ fn links(n: usize, count: usize, bump: f64) -> Vec<Vec<[f64; 3]>> {
 fn reset_equals_new_and_reuses_the_net() {
     let mut net: PolarNet<f64, 384> = PolarNet::empty();
     assert_eq!(net.valence(), 0);
-    assert_eq!(net.links_held(), 0);
+    assert_eq!(net.link_count(), 0);
     // An empty net refuses to step; an RTS step on it does nothing.
     assert_eq!(
         net.step(FirstStep::Uniform),
-        Err(Error::NotEnoughLinks { needed: 2, held: 0 })
+        Err(Error::NotEnoughLinks {
+            needed: 2,
+            present: 0
+        })
     );
     assert_eq!(net.rts_step(), Ok(()));
     assert_eq!(net.valence(), 0);
@@ -49,7 +52,7 @@ fn reset_equals_new_and_reuses_the_net() {
         assert_eq!(net.valence(), n * 8);
         assert_eq!(net.level(), 3);
         assert_eq!(net.pole(), fresh.pole());
-        for i in 1..=net.links_held() {
+        for i in 1..=net.link_count() {
             assert_eq!(net.link(i), fresh.link(i));
         }
     }

@@ -74,7 +74,7 @@ fn polar_ring_has_the_common_shape() {
         }
         net.step(FirstStep::Uniform).unwrap();
     }
-    assert_eq!((net.valence(), net.links_held()), (20, 5));
+    assert_eq!((net.valence(), net.link_count()), (20, 5));
     assert_eq!(net.ring_len(), 2 * 20);
     check_ring(net.ring_len(), net.ring_patches(), |k| net.ring_patch(k));
     assert_eq!(net.ring_patch(net.ring_len()), Err(Error::OutOfDomain));

@@ -69,7 +69,7 @@ pub(crate) unsafe fn refined<R: Real>(
 /// Writes `[N, K, pole x y z, links 1..K]` (`5 + 3·K·N` values) to `out`.
 pub(crate) fn write_refined<R: Real>(net: &PolarNetBuf<'_, R>, out: &mut [R]) -> i32 {
     let n = net.valence();
-    let held = net.links_held();
+    let held = net.link_count();
     let Some(needed) = held
         .checked_mul(n)
         .and_then(|k| k.checked_mul(3))

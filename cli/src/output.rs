@@ -43,7 +43,7 @@ pub struct PolarOutput<R> {
 impl<R: Scalar> PolarOutput<R> {
     /// The configuration a net holds at its current level.
     pub fn of<S: NetStorage<R>>(net: &PolarNetInner<R, S>) -> Self {
-        let links = (1..=net.links_held())
+        let links = (1..=net.link_count())
             .filter_map(|i| net.link(i))
             .map(|l| l.iter().map(|p| p.0).collect())
             .collect();

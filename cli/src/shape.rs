@@ -256,7 +256,7 @@ impl PolarJob<'_> {
             })
             .collect();
         for level in 0..=self.depth {
-            if net.links_held() >= 5 {
+            if net.link_count() >= 5 {
                 let cols = net.valence();
                 for (k, p) in net.ring_patches().enumerate() {
                     let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);

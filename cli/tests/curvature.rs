@@ -67,7 +67,7 @@ fn inner_edge() {
             if m > 0 {
                 net.step(FirstStep::Uniform).unwrap();
             }
-            if net.links_held() < 5 {
+            if net.link_count() < 5 {
                 continue;
             }
             let n = net.valence();

@@ -65,7 +65,7 @@ fn kernel_f64(
             net.step(first).unwrap();
         }
     }
-    let links = (1..=net.links_held())
+    let links = (1..=net.link_count())
         .map(|i| net.link(i).unwrap().iter().map(|p| p.0).collect())
         .collect();
     (net.pole().0, links)

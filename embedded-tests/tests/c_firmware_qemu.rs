@@ -201,7 +201,7 @@ fn native_c2ps(
             return (fail(e), fail(e));
         }
     }
-    let (n, held) = (net.valence(), net.links_held());
+    let (n, held) = (net.valence(), net.link_count());
     let mut out = vec![n as f64, held as f64];
     out.extend(net.pole().0);
     for i in 1..=held {

@@ -53,7 +53,7 @@ fn native(
             return (codes::code(&e), vec![], codes::code(&e), vec![]);
         }
     }
-    let (n, held) = (net.valence(), net.links_held());
+    let (n, held) = (net.valence(), net.link_count());
     let mut out = vec![n as f64, held as f64];
     out.extend(net.pole().0);
     for i in 1..=held {

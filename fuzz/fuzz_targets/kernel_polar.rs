@@ -75,10 +75,10 @@ fn snap_net<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> Vec<u64> {
         net.valence() as u64,
         net.base_valence() as u64,
         u64::from(net.level()),
-        net.links_held() as u64,
+        net.link_count() as u64,
     ];
     point_bits(net.pole(), &mut v);
-    for i in 1..=net.links_held() {
+    for i in 1..=net.link_count() {
         for p in net.link(i).unwrap_or(&[]) {
             point_bits(*p, &mut v);
         }
@@ -95,10 +95,10 @@ fn snap_buf<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> Vec<u64> {
         net.valence() as u64,
         net.base_valence() as u64,
         u64::from(net.level()),
-        net.links_held() as u64,
+        net.link_count() as u64,
     ];
     point_bits(net.pole(), &mut v);
-    for i in 1..=net.links_held() {
+    for i in 1..=net.link_count() {
         for p in net.link(i).unwrap_or(&[]) {
             point_bits(*p, &mut v);
         }
@@ -112,18 +112,18 @@ fn snap_buf<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> Vec<u64> {
 
 fn links_finite_net<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> bool {
     net.pole().is_finite()
-        && (1..=net.links_held()).all(|i| all_finite(net.link(i).unwrap_or(&[]).iter().copied()))
+        && (1..=net.link_count()).all(|i| all_finite(net.link(i).unwrap_or(&[]).iter().copied()))
 }
 
 fn links_finite_buf<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> bool {
     net.pole().is_finite()
-        && (1..=net.links_held()).all(|i| all_finite(net.link(i).unwrap_or(&[]).iter().copied()))
+        && (1..=net.link_count()).all(|i| all_finite(net.link(i).unwrap_or(&[]).iter().copied()))
 }
 
 /// The net's pole and links are at most MAX/2^40 (finite results expected).
 fn net_small<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> bool {
     bounded(
-        (1..=net.links_held())
+        (1..=net.link_count())
             .flat_map(|i| net.link(i).unwrap_or(&[]).iter().map(|p| p.0))
             .chain([net.pole().0]),
         40,
@@ -132,7 +132,7 @@ fn net_small<R: FuzzReal, const C: usize>(net: &PolarNet<R, C>) -> bool {
 
 fn buf_small<R: FuzzReal>(net: &PolarNetBuf<'_, R>) -> bool {
     bounded(
-        (1..=net.links_held())
+        (1..=net.link_count())
             .flat_map(|i| net.link(i).unwrap_or(&[]).iter().map(|p| p.0))
             .chain([net.pole().0]),
         40,

@@ -58,7 +58,7 @@ proptest! {
     ) {
         let size = cfg.max_abs();
         for net in levels(&cfg, depth, first) {
-            if net.links_held() < 5 {
+            if net.link_count() < 5 {
                 prop_assert!(net.ring_patch(0).is_err());
                 continue;
             }
@@ -92,7 +92,7 @@ proptest! {
         let nets = levels(&cfg, depth, first);
         for pair in nets.windows(2) {
             let (outer, inner) = (&pair[0], &pair[1]);
-            if outer.links_held() < 5 {
+            if outer.link_count() < 5 {
                 continue;
             }
             for c in columns(outer.valence()) {

@@ -23,7 +23,7 @@ fn snapshot<const C: usize>(net: &PolarNet<f64, C>) -> (Polar, usize, u32, usize
         from_net(net),
         net.valence(),
         net.level(),
-        net.links_held(),
+        net.link_count(),
         net.roots().to_vec(),
     )
 }

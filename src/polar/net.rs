@@ -2,7 +2,7 @@
 //! place, over any [`NetStorage`].
 //!
 //! One type, [`PolarNetInner<R, S>`], holds the pole, the valence, the level and
-//! the number of links held; its links 1..5 (points `q[i][j]`, `j` taken mod
+//! the number of links; its links 1..5 (points `q[i][j]`, `j` taken mod
 //! the valence) and the roots of unity of its current valence live in the
 //! storage `S`. As `heapless` does with `VecInner` and its `Vec`/`VecView`
 //! aliases, two aliases name the usual storages:
@@ -100,9 +100,9 @@ pub(crate) struct Head<R> {
     pub(crate) pole: Point3<R>,
     /// Current valence `N` (0 for an empty net).
     pub(crate) valence: usize,
-    /// Links held; link `k` (1-based, `k ≤ held`) is at
+    /// Links; link `k` (1-based, `k ≤ link_count`) is at
     /// `[(k−1)·cap, (k−1)·cap + valence)` of the link storage.
-    pub(crate) held: usize,
+    pub(crate) link_count: usize,
     pub(crate) level: u32,
     pub(crate) base_valence: usize,
 }
@@ -111,7 +111,7 @@ impl<R: Real> Head<R> {
     const EMPTY: Self = Head {
         pole: Point3([R::ZERO; 3]),
         valence: 0,
-        held: 0,
+        link_count: 0,
         level: 0,
         base_valence: 0,
     };
@@ -137,7 +137,7 @@ impl<'a, R: Real> NetRef<'a, R> {
         capacity(self.links.len(), self.roots.len())
     }
 
-    /// Link `i` (1-based, `1..=held`), or `None`.
+    /// Link `i` (1-based, `1..=link_count`), or `None`.
     pub(crate) fn link(self, i: usize) -> Option<&'a [Point3<R>]> {
         link_of(self.links, self.cap(), self.head, i)
     }
@@ -152,13 +152,13 @@ impl<'a, R: Real> NetRef<'a, R> {
         let link = |k: usize| self.link(k).unwrap_or(&[]);
         Ring::new(
             [link(1), link(2), link(3), link(4), link(5)],
-            self.head.held,
+            self.head.link_count,
             self.head.valence,
         )
     }
 }
 
-/// Link `i` (1-based, `1..=head.held`) of link storage of capacity `cap`.
+/// Link `i` (1-based, `1..=head.link_count`) of link storage of capacity `cap`.
 #[inline]
 pub(crate) fn link_of<'a, R>(
     links: &'a [Point3<R>],
@@ -166,7 +166,7 @@ pub(crate) fn link_of<'a, R>(
     head: &Head<R>,
     i: usize,
 ) -> Option<&'a [Point3<R>]> {
-    if i >= 1 && i <= head.held {
+    if i >= 1 && i <= head.link_count {
         let start = (i - 1) * cap;
         links.get(start..start + head.valence)
     } else {
@@ -207,8 +207,8 @@ fn reset<R: Real, L: AsRef<[[R; 3]]>>(
     check_valence(n, cap)?;
     let base = seed(n)?;
     // Checked: from here on nothing fails.
-    let held = links.len().min(MAX_STORED_LINKS);
-    let slots = split_links(links_storage, cap, n, held);
+    let link_count = links.len().min(MAX_STORED_LINKS);
+    let slots = split_links(links_storage, cap, n, link_count);
     for (slot, l) in slots.into_iter().zip(links) {
         for (dst, &[x, y, z]) in slot.iter_mut().zip(l.as_ref()) {
             // Coordinate by coordinate: a whole-point copy here became a
@@ -222,7 +222,7 @@ fn reset<R: Real, L: AsRef<[[R; 3]]>>(
     *head = Head {
         pole: Point3(pole),
         valence: n,
-        held,
+        link_count,
         level: 0,
         base_valence: n,
     };
@@ -255,7 +255,7 @@ impl<R: Real, const CAP: usize> PolarNet<R, CAP> {
     ///     .collect();
     /// // Capacity 12: valence 6 and one step.
     /// let net: PolarNet<f64, 12> = PolarNet::new([0.0; 3], &links)?;
-    /// assert_eq!((net.valence(), net.level(), net.links_held()), (6, 0, 5));
+    /// assert_eq!((net.valence(), net.level(), net.link_count()), (6, 0, 5));
     /// assert_eq!(net.link(2).unwrap()[0].0, [2.0, 0.0, 0.4]);
     /// // Valence 13 does not fit: a typed error, nothing built.
     /// let too_big: Vec<Vec<[f64; 3]>> = vec![vec![[1.0, 0.0, 0.0]; 13]; 2];
@@ -403,12 +403,12 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
     pub fn pole(&self) -> Point3<R> {
         self.head.pole
     }
-    /// Number of links held (2..=5).
+    /// Number of links (2..=5).
     #[inline]
-    pub fn links_held(&self) -> usize {
-        self.head.held
+    pub fn link_count(&self) -> usize {
+        self.head.link_count
     }
-    /// Link `i` (1-based, `1..=links_held()`), or `None`.
+    /// Link `i` (1-based, `1..=link_count()`), or `None`.
     #[inline]
     pub fn link(&self, i: usize) -> Option<&[Point3<R>]> {
         self.view().link(i)
@@ -459,7 +459,7 @@ impl<R: Real, S: NetStorage<R>> PolarNetInner<R, S> {
         c2ps_step(&mut self.head, self.storage.parts_mut(), first)
     }
 
-    /// One RTS step (§3). Valence and level are unchanged; the links held grow
+    /// One RTS step (§3). Valence and level are unchanged; the links grow
     /// as for C²PS (old links up to `K` give new links up to `2K−1`, at most
     /// 5).
     ///
@@ -547,7 +547,7 @@ impl<R: Real, S> core::fmt::Debug for PolarNetInner<R, S> {
             .field("pole", &h.pole)
             .field("valence", &h.valence)
             .field("level", &h.level)
-            .field("links_held", &h.held)
+            .field("link_count", &h.link_count)
             .field("base_valence", &h.base_valence)
             .finish_non_exhaustive()
     }
@@ -559,11 +559,11 @@ impl<R: Real + defmt::Format, S> defmt::Format for PolarNetInner<R, S> {
         let h = &self.head;
         defmt::write!(
             f,
-            "PolarNet {{ pole: {}, valence: {}, level: {}, links_held: {}, base_valence: {} }}",
+            "PolarNet {{ pole: {}, valence: {}, level: {}, link_count: {}, base_valence: {} }}",
             h.pole,
             h.valence,
             h.level,
-            h.held,
+            h.link_count,
             h.base_valence
         )
     }
@@ -607,9 +607,9 @@ pub(crate) fn flat_links<R: Real>(
     Ok((links, stored))
 }
 
-/// Links held after one step: with old links up to `K`, new links up to `2K−1`
+/// Links after one step: with old links up to `K`, new links up to `2K−1`
 /// (at most [`MAX_STORED_LINKS`]).
 #[inline]
-pub(crate) fn held_after_step(held: usize) -> usize {
-    (2 * held).saturating_sub(1).min(MAX_STORED_LINKS)
+pub(crate) fn link_count_after_step(link_count: usize) -> usize {
+    (2 * link_count).saturating_sub(1).min(MAX_STORED_LINKS)
 }

@@ -26,11 +26,18 @@ pub(crate) struct Ring<'a, R> {
 }
 
 impl<'a, R: Real> Ring<'a, R> {
-    /// The ring of a net holding `held` links of valence `n`;
+    /// The ring of a net holding `link_count` links of valence `n`;
     /// [`Error::NotEnoughLinks`] below 5 links.
-    pub(crate) fn new(links: [&'a [Point3<R>]; 5], held: usize, n: usize) -> Result<Self, Error> {
-        if held < 5 {
-            return Err(Error::NotEnoughLinks { needed: 5, held });
+    pub(crate) fn new(
+        links: [&'a [Point3<R>]; 5],
+        link_count: usize,
+        n: usize,
+    ) -> Result<Self, Error> {
+        if link_count < 5 {
+            return Err(Error::NotEnoughLinks {
+                needed: 5,
+                present: link_count,
+            });
         }
         Ok(Ring { links, n })
     }

@@ -3,7 +3,7 @@
 
 use super::fourier::Fourier;
 use super::index::{add_mod, at, put};
-use super::net::{capacity, held_after_step, link_of, split_links, Head};
+use super::net::{capacity, link_count_after_step, link_of, split_links, Head};
 use super::step::step_fits;
 use crate::error::Error;
 use crate::point::Point3;
@@ -15,7 +15,7 @@ pub(crate) fn rts_step<R: Real>(
     head: &mut Head<R>,
     (links, roots): (&mut [Point3<R>], &mut [[R; 2]]),
 ) -> Result<(), Error> {
-    if head.held < 2 {
+    if head.link_count < 2 {
         return Ok(()); // an empty net: nothing to refine
     }
     let n = head.valence;
@@ -25,32 +25,32 @@ pub(crate) fn rts_step<R: Real>(
         [1, 2, 3].map(|i| link_of(links, cap, head, i).unwrap_or(&[])),
         n,
     )?;
-    let new_held = held_after_step(head.held);
+    let new_link_count = link_count_after_step(head.link_count);
     rts_in_place(
         &mut head.pole,
-        split_links(links, cap, n, new_held),
+        split_links(links, cap, n, new_link_count),
         n,
-        head.held,
+        head.link_count,
         roots.get(..n).unwrap_or_default(),
     );
-    head.held = new_held;
+    head.link_count = new_link_count;
     Ok(())
 }
 
 /// The step over plain slices. On entry `links[k][..n]` holds
-/// link `k+1` for `k < held`, and every link that will be written
-/// (`k < 2·held − 1`, at most 5) has room for `n` points (more is left alone).
+/// link `k+1` for `k < link_count`, and every link that will be written
+/// (`k < 2·link_count − 1`, at most 5) has room for `n` points (more is left alone).
 fn rts_in_place<R: Real>(
     pole: &mut Point3<R>,
     links: [&mut [Point3<R>]; 5],
     n: usize,
-    held: usize,
+    link_count: usize,
     roots: &[[R; 2]],
 ) {
     let [l1, l2, l3, l4, l5] = links;
     let f = Fourier::of(l1.get(..n).unwrap_or(&[]), roots, 1);
     let q00 = *pole;
-    let has3 = held >= 3 && l3.len() >= n && l4.len() >= n && l5.len() >= n;
+    let has3 = link_count >= 3 && l3.len() >= n && l4.len() >= n && l5.len() >= n;
     if l1.len() < n || l2.len() < n || l3.len() < n {
         return;
     }

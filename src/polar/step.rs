@@ -11,7 +11,7 @@
 use super::column::{column, refine_even, refine_odd};
 use super::fourier::Fourier;
 use super::index::{add_mod, at, next_mod, put};
-use super::net::{capacity, held_after_step, link_of, split_links, FirstStep, Head};
+use super::net::{capacity, link_count_after_step, link_of, split_links, FirstStep, Head};
 use crate::error::Error;
 use crate::point::Point3;
 use crate::real::Real;
@@ -27,7 +27,7 @@ pub(crate) fn c2ps_step<R: Real>(
     let n = head.valence;
     let cap = capacity(links.len(), roots.len());
     // 2n <= cap <= root storage: the roots double in place.
-    check_step(head.held, n, cap)?;
+    check_step(head.link_count, n, cap)?;
     step_fits(
         head.pole,
         [1, 2, 3].map(|i| link_of(links, cap, head, i).unwrap_or(&[])),
@@ -35,28 +35,31 @@ pub(crate) fn c2ps_step<R: Real>(
     )?;
     let roots = roots.get_mut(..2 * n).unwrap_or_default();
     double_ring(roots, n);
-    let new_held = held_after_step(head.held);
+    let new_link_count = link_count_after_step(head.link_count);
     c2ps_in_place(
         &mut head.pole,
-        split_links(links, cap, 2 * n, new_held),
+        split_links(links, cap, 2 * n, new_link_count),
         n,
-        head.held,
-        new_held,
+        head.link_count,
+        new_link_count,
         roots,
         head.level == 0 && first == FirstStep::Uniform,
     );
     head.valence = 2 * n;
-    head.held = new_held;
+    head.link_count = new_link_count;
     head.level += 1;
     Ok(())
 }
 
-/// The errors of a C²PS step from valence `n` with `held` links in room for
+/// The errors of a C²PS step from valence `n` with `link_count` links in room for
 /// `cap` points per link, in the order checked: [`Error::NotEnoughLinks`],
 /// [`Error::CapacityExceeded`].
-pub(crate) fn check_step(held: usize, n: usize, cap: usize) -> Result<(), Error> {
-    if held < 2 {
-        return Err(Error::NotEnoughLinks { needed: 2, held });
+pub(crate) fn check_step(link_count: usize, n: usize, cap: usize) -> Result<(), Error> {
+    if link_count < 2 {
+        return Err(Error::NotEnoughLinks {
+            needed: 2,
+            present: link_count,
+        });
     }
     if 2 * n > cap {
         return Err(Error::CapacityExceeded {
@@ -112,15 +115,15 @@ fn refine<R: Real>(prev: Point3<R>, cur: Point3<R>, next: Point3<R>) -> (Point3<
 }
 
 /// The step over plain slices. `n` is the old valence: on entry
-/// `links[k][..n]` holds link `k+1` for `k < held`, and every link that will be
-/// written (`k < new_held`) has room for `2n` points (more is left alone);
+/// `links[k][..n]` holds link `k+1` for `k < link_count`, and every link that will be
+/// written (`k < new_link_count`) has room for `2n` points (more is left alone);
 /// `roots` are already the `2n`-th roots.
 pub(crate) fn c2ps_in_place<R: Real>(
     pole: &mut Point3<R>,
     links: [&mut [Point3<R>]; 5],
     n: usize,
-    held: usize,
-    new_held: usize,
+    link_count: usize,
+    new_link_count: usize,
     roots: &[[R; 2]],
     uniform_first: bool,
 ) {
@@ -128,7 +131,7 @@ pub(crate) fn c2ps_in_place<R: Real>(
     let n2 = 2 * n;
     let f = Fourier::of(l1.get(..n).unwrap_or(&[]), roots, 2);
     let q00 = *pole;
-    let has3 = held >= 3;
+    let has3 = link_count >= 3;
 
     // Every link that will be written has room for 2n (checked by the caller;
     // a short one would only make the sweep below do nothing).
@@ -142,7 +145,7 @@ pub(crate) fn c2ps_in_place<R: Real>(
         at(l2, jl, z),
         if has3 { at(l3, jl, z) } else { z },
     ];
-    let write45 = has3 && new_held >= 5 && l4.len() >= n2 && l5.len() >= n2;
+    let write45 = has3 && new_link_count >= 5 && l4.len() >= n2 && l5.len() >= n2;
     let no_root = [R::ZERO; 2];
 
     for j in (0..n).rev() {

@@ -29,7 +29,7 @@
 //! docs/kernel.md's f32 bound of the configuration's size, `tests/polar_stream.rs`.
 
 use super::jet::PoleJet;
-use super::net::{held_after_step, validate, FirstStep, MAX_STORED_LINKS};
+use super::net::{link_count_after_step, validate, FirstStep, MAX_STORED_LINKS};
 use super::stream_level::{next_column, power, Column, Level, Sums};
 use crate::bezier::{bspline_to_bezier_cubic, BicubicPatch};
 use crate::error::Error;
@@ -221,8 +221,8 @@ impl<R: Real, const D: usize> PolarStream<R, D> {
             .and_then(|p| n.checked_mul(p))
             .filter(|&t| t <= usize::MAX / 8)
             .ok_or(overflow)?;
-        let held0 = links.len().min(MAX_STORED_LINKS);
-        let stored = links.get(..held0).unwrap_or(&[]);
+        let link_count0 = links.len().min(MAX_STORED_LINKS);
+        let stored = links.get(..link_count0).unwrap_or(&[]);
         fits(&pole, stored, n)?;
 
         // Checked: from here on nothing fails.
@@ -230,31 +230,31 @@ impl<R: Real, const D: usize> PolarStream<R, D> {
         self.level0 = Level {
             count: 0,
             n,
-            held: held0,
+            link_count: link_count0,
             sums,
             w: [R::from_f64(w0.0), R::from_f64(w0.1)],
             ..Level::EMPTY
         };
-        let (mut lo_n, mut lo_held, mut lo_sums) = (n, held0, sums);
+        let (mut lo_n, mut lo_link_count, mut lo_sums) = (n, link_count0, sums);
         for level in self.levels.iter_mut().take(depth as usize) {
             let n = 2 * lo_n;
             let w = primitive_root(n).unwrap_or((1.0, 0.0));
             let sums = lo_sums.next();
-            let held = held_after_step(lo_held);
+            let link_count = link_count_after_step(lo_link_count);
             *level = Level {
                 count: 0,
                 n,
-                held,
+                link_count,
                 sums,
                 w: [R::from_f64(w.0), R::from_f64(w.1)],
                 ..Level::EMPTY
             };
-            (lo_n, lo_held, lo_sums) = (n, held, sums);
+            (lo_n, lo_link_count, lo_sums) = (n, link_count, sums);
         }
         let mut total = 0usize;
         for m in options.from_level..=depth {
             let Some(lv) = self.level(m) else { continue };
-            if lv.held >= 5 {
+            if lv.link_count >= 5 {
                 let spans = if options.span.is_some() { 1 } else { 2 };
                 total = total.saturating_add(spans * lv.n);
             }
@@ -500,7 +500,7 @@ impl<R: Real, L: AsRef<[[R; 3]]>, const D: usize> Sweep<'_, R, L, D> {
         let Some(lv) = self.state.level(m) else {
             return;
         };
-        if lv.held < 5 || m < self.options.from_level || i < 4 || i - 4 >= lv.n {
+        if lv.link_count < 5 || m < self.options.from_level || i < 4 || i - 4 >= lv.n {
             return;
         }
         self.pending = Some((m, i, self.options.span.unwrap_or(0)));

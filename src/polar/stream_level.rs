@@ -102,8 +102,8 @@ pub(crate) struct Level<R> {
     pub count: usize,
     /// The level's valence `N = n·2^m`.
     pub n: usize,
-    /// Links held at this level (§2: `2K−1` after a step, at most 5).
-    pub held: usize,
+    /// Links at this level (§2: `2K−1` after a step, at most 5).
+    pub link_count: usize,
     /// This level's pole and 1-link sums.
     pub sums: Sums<R>,
     /// `(c, s)(1/N)`: turns the root of column `k` of the level below into
@@ -116,7 +116,7 @@ impl<R: Real> Level<R> {
         win: [Column::ZERO; WINDOW],
         count: 0,
         n: 0,
-        held: 0,
+        link_count: 0,
         sums: Sums::ZERO,
         w: [R::ZERO; 2],
     };
@@ -184,7 +184,7 @@ pub(crate) fn next_column<R: Real>(
     let r = if even { cur.r } else { rotate(cur.r, hi.w) };
     let f = &lo.sums;
     let h = [f.h1(r), f.h2(double(r))];
-    let outer = lo.held >= 3 && hi.held >= 5;
+    let outer = lo.link_count >= 3 && hi.link_count >= 5;
     let q = column(t, f.pole, f.a, h, uniform_first, outer);
     Column { q, r }
 }

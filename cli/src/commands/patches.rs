@@ -450,7 +450,7 @@ impl<R: Scalar> Job<'_, R> {
         let outer = patches.len();
         let mut rings = Vec::new();
         for level in 0..=self.depth {
-            if net.links_held() >= 5 {
+            if net.link_count() >= 5 {
                 let ring = net.ring_patches();
                 rings.push((level, ring.len()));
                 patches.extend(ring.map(|patch| LeveledPatch { level, patch }));

@@ -30,7 +30,7 @@ pub fn from_net<R: Real, const C: usize>(net: &PolarNet<R, C>) -> Polar {
     let conv = |p: &capdiv::Point3<R>| p.0.map(|c| c.to_f64());
     Polar {
         pole: conv(&net.pole()),
-        links: (1..=net.links_held())
+        links: (1..=net.link_count())
             .map(|i| net.link(i).expect("held").iter().map(conv).collect())
             .collect(),
     }
