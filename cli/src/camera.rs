@@ -6,7 +6,7 @@
 use capdiv::Point3;
 
 /// A point or direction: the coordinates of a `Point3<f64>`, whose
-/// operations [`dot`], [`cross`] and [`unit`] apply to it.
+/// operations [`dot`](fn@dot), [`cross`](fn@cross) and [`unit`](fn@unit) apply to it.
 pub type V3 = [f64; 3];
 
 /// [`Point3::dot`] of two `V3`.

@@ -297,8 +297,8 @@ pub(crate) struct Scratch<R: Real> {
 }
 
 impl<R: Real> Scratch<R> {
-    /// Buffers for the caps of `plan`; `need` is the largest polar capacity
-    /// ([`PolarNetBuf::capacity_for`]).
+    /// Buffers for the caps of `plan`; `need` is the largest valence a polar
+    /// cap reaches (its storage capacity, [`SliceStorage::links_len`]).
     pub(crate) fn new(plan: &SurfacePlan<'_>, need: usize) -> Result<Self, EvalError> {
         let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
         let max_ev = plan

@@ -203,7 +203,7 @@ pub enum Unit {
     /// The patch of [`SurfacePlan::regular`]`[i]`.
     Regular(u32),
     /// Cap `i`, numbered as in [`crate::PatchRecord::cap`]: the polar caps
-    /// first, then [`SurfacePlan::ev`].
+    /// first, then [`SurfacePlan::extraordinary`].
     Cap(u32),
 }
 
@@ -532,7 +532,7 @@ impl<'t> SurfacePlan<'t> {
 
     /// [`Self::order`]: `analysed` counts the regular patches and EG /
     /// Catmull-Clark caps of the analysed level (the first of
-    /// [`Self::regular`] and [`Self::ev`]); `topo` is the input's topology,
+    /// [`Self::regular`] and [`Self::extraordinary`]); `topo` is the input's topology,
     /// if it has one (without it, faces are taken in input order).
     fn emission_order(
         &self,
