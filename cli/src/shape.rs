@@ -428,7 +428,7 @@ fn mesh_shape(
     check_size(name, &plan, DEFAULT_MAX_PATCHES)?;
     let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::eval(name, error))?;
     let mut out = Collect::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut out)
+    ev.evaluate(&mesh.vertices, &mut out)
         .map_err(|error| CliError::eval(name, error))?;
     let followed: Vec<u32> = match out.caps.iter().find(|c| c.vertex == Some(0)) {
         Some(c) if keep.is_some() => vec![c.index],

@@ -2,7 +2,7 @@
 //! [`Evaluator::evaluate`]; more run [`Evaluator::evaluate_parallel`] on a
 //! rayon pool of that size, with the same output bit for bit.
 
-use capdiv_mesh::{EvalError, Evaluator, SurfacePlan, SurfaceSink};
+use capdiv_mesh::{EvalError, Evaluator, SurfaceSink};
 
 /// Stack of each evaluation thread: the caps' nets live on the heap, so a
 /// modest stack suffices.
@@ -14,13 +14,12 @@ pub fn default_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
-/// Evaluates `plan` on `positions` into `sink` with `threads` threads
+/// Evaluates `evaluator`'s plan on `positions` into `sink` with `threads` threads
 /// (`None`: [`default_threads`]). A pool that cannot be started falls back
 /// to one thread.
 pub fn evaluate<R: capdiv::Real + Send + Sync>(
     threads: Option<usize>,
-    evaluator: &mut Evaluator<R>,
-    plan: &SurfacePlan<'_>,
+    evaluator: &mut Evaluator<'_, R>,
     positions: &[[R; 3]],
     sink: &mut (dyn SurfaceSink<R> + Send),
 ) -> Result<(), EvalError> {
@@ -36,7 +35,7 @@ pub fn evaluate<R: capdiv::Real + Send + Sync>(
         })
         .flatten();
     match pool {
-        Some(pool) => pool.install(|| evaluator.evaluate_parallel(plan, positions, sink)),
-        None => evaluator.evaluate(plan, positions, sink),
+        Some(pool) => pool.install(|| evaluator.evaluate_parallel(positions, sink)),
+        None => evaluator.evaluate(positions, sink),
     }
 }

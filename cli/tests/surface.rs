@@ -140,7 +140,7 @@ fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, us
         patches: vec![],
         caps: vec![],
     };
-    ev.evaluate(&plan, &m.vertices, &mut sink).unwrap();
+    ev.evaluate(&m.vertices, &mut sink).unwrap();
     (sink, counts)
 }
 
@@ -629,7 +629,7 @@ fn f32_patches_equal_the_library_in_f32() {
         patches: vec![],
         caps: vec![],
     };
-    ev.evaluate(&plan, &pos, &mut sink).unwrap();
+    ev.evaluate(&pos, &mut sink).unwrap();
     let patches = out["patches"].as_array().unwrap();
     assert_eq!(patches.len(), sink.patches.len());
     assert_eq!(out["summary"]["precision"], "f32");

@@ -80,7 +80,7 @@ fn evaluate<R: FuzzReal>(
     // The only evaluation errors a plan for_mesh made may meet are numeric
     // (positions the fuzzer scaled to overflow): a cap the kernel refuses
     // for its shape is a planning bug.
-    match ev.evaluate(plan, &positions, &mut sink) {
+    match ev.evaluate(&positions, &mut sink) {
         Ok(()) => {}
         Err(EvalError::Overflow | EvalError::NonFinite { .. }) => return None,
         Err(EvalError::Kernel {

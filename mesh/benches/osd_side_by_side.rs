@@ -150,7 +150,7 @@ fn measure(case: &Case, helper: &Path) -> Row {
     let plan = capdiv_analyse(&case.mesh);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut count = Count::default();
-    ev.evaluate(&plan, &case.mesh.vertices, &mut count)
+    ev.evaluate(&case.mesh.vertices, &mut count)
         .expect("evaluate");
     black_box(count.acc);
     let osd = run_helper(helper, &job_file(case.name, &case.mesh));

@@ -202,8 +202,7 @@ fn capdiv_job_analyse(mesh: &MeshInput) -> SurfacePlan<'static> {
 /// Evaluation and sampling: one [`Evaluator::evaluate`] into a [`GridSink`].
 #[inline(never)]
 fn evaluate_sampled<R: Real>(
-    ev: &mut Evaluator<R>,
-    plan: &SurfacePlan,
+    ev: &mut Evaluator<'_, R>,
     at: &[[R; 3]],
     bases: &[u32],
     out: &mut [[R; 6]],
@@ -213,7 +212,7 @@ fn evaluate_sampled<R: Real>(
         out,
         c2ps: 0,
     };
-    ev.evaluate(plan, at, &mut sink).expect("evaluate");
+    ev.evaluate(at, &mut sink).expect("evaluate");
     sink.c2ps
 }
 
@@ -228,7 +227,7 @@ fn whole_job<R: Real>(mesh: &MeshInput, stages: &mut [Duration; 3]) -> (Vec<[R; 
     let (bases, ptex) = ptex_bases(mesh);
     let at = positions::<R>(mesh, 1.0);
     let mut out = vec![[R::from_f64(f64::NAN); 6]; ptex * GRID * GRID];
-    let c2ps = evaluate_sampled(&mut ev, &plan, &at, &bases, &mut out);
+    let c2ps = evaluate_sampled(&mut ev, &at, &bases, &mut out);
     let t3 = Instant::now();
     stages[0] += t1 - t;
     stages[1] += t2 - t1;
@@ -313,15 +312,13 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
     let (patches, _) = time(|| {
         flip += 1;
         let mut d = Discard(0);
-        ev.evaluate(&plan, &moved[flip & 1], &mut d)
-            .expect("evaluate");
+        ev.evaluate(&moved[flip & 1], &mut d).expect("evaluate");
         black_box(d.0);
     });
     let (reeval, _) = time(|| {
         flip += 1;
         black_box(evaluate_sampled(
             &mut ev,
-            &plan,
             &moved[flip & 1],
             &bases,
             &mut out,
@@ -372,13 +369,11 @@ fn measure_tessellation(mesh: &MeshInput) -> (f64, f64, f64, usize, usize) {
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let (collect, _) = time(|| {
         let mut k = Keep::default();
-        ev.evaluate(&plan, &mesh.vertices, &mut k)
-            .expect("evaluate");
+        ev.evaluate(&mesh.vertices, &mut k).expect("evaluate");
         black_box(k.0.len());
     });
     let mut keep = Keep::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut keep)
-        .expect("evaluate");
+    ev.evaluate(&mesh.vertices, &mut keep).expect("evaluate");
     let tol = WELD * size(mesh);
     let tess = median_of_3(|| {
         black_box(tessellate(
@@ -657,7 +652,7 @@ fn main() {
         let plan = capdiv_job_analyse(&case.mesh);
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
         let mut keep = Keep::default();
-        ev.evaluate(&plan, &case.mesh.vertices, &mut keep)
+        ev.evaluate(&case.mesh.vertices, &mut keep)
             .expect("evaluate");
         let bytes = capdiv_tessellate_obj(&keep.0, WELD * size(&case.mesh));
         println!("faces {}", case.mesh.faces.len());

@@ -77,16 +77,14 @@ fn bench(c: &mut Criterion, name: &str, make: fn(usize) -> MeshInput, depth: u32
         .expect("plan");
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
         let mut count = Count::default();
-        ev.evaluate(&plan, &mesh.vertices, &mut count)
-            .expect("evaluate");
+        ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
         // Throughput in emitted patches; faces are in the id.
         evaluation.throughput(Throughput::Elements(count.patches as u64));
         let id = format!("{}f/{}p", mesh.faces.len(), count.patches);
         evaluation.bench_function(BenchmarkId::from_parameter(id), |b| {
             b.iter(|| {
                 let mut count = Count::default();
-                ev.evaluate(&plan, &mesh.vertices, &mut count)
-                    .expect("evaluate");
+                ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
                 black_box(count.acc)
             })
         });

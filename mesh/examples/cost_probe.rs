@@ -41,8 +41,7 @@ fn main() {
     let plan = SurfacePlan::new(&topo, options).expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut count = Count::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut count)
-        .expect("evaluate");
+    ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
     println!(
         "{kind}: {} faces, {} patches ({})",
         mesh.faces.len(),

@@ -43,7 +43,7 @@ fn main() {
         .unwrap();
         let mut ev = Evaluator::<f64>::new(&plan).unwrap();
         let mut c = Count(BTreeMap::new());
-        ev.evaluate(&plan, &m.vertices, &mut c).unwrap();
+        ev.evaluate(&m.vertices, &mut c).unwrap();
         println!(
             "{name}: steps {} needed {} uncovered {:?} {:?}",
             plan.steps.len(),

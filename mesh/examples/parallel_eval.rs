@@ -53,9 +53,9 @@ fn time<S: SurfaceSink<f64> + Default + Send>(
         let mut sink = S::default();
         let start = Instant::now();
         if threads == 1 {
-            ev.evaluate(plan, positions, &mut sink).unwrap();
+            ev.evaluate(positions, &mut sink).unwrap();
         } else {
-            pool.install(|| ev.evaluate_parallel(plan, positions, &mut sink))
+            pool.install(|| ev.evaluate_parallel(positions, &mut sink))
                 .unwrap();
         }
         times.push(start.elapsed().as_secs_f64() * 1e3);

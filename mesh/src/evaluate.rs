@@ -265,8 +265,19 @@ impl core::error::Error for EvalError {}
 /// then takes `17·2^20·size_of::<R>()` bytes: 142 MB in f64).
 pub const MAX_POLAR_VALENCE: usize = 1 << 20;
 
-/// Evaluation state, sized for one plan.
-pub struct Evaluator<R: Real> {
+/// Evaluation state: the plan it runs and buffers sized for it.
+pub struct Evaluator<'p, R: Real> {
+    /// The plan the buffers are sized for.
+    plan: &'p SurfacePlan<'p>,
+    /// Everything but the plan.
+    pub(crate) buffers: EvalBuffers<R>,
+}
+
+/// An [`Evaluator`]'s buffers without its plan ([`Evaluator::into_buffers`]),
+/// for a caller that owns the plan beside them (a struct cannot hold a plan
+/// and an evaluator borrowing it): [`Evaluator::with_buffers`] takes them
+/// back without allocating.
+pub struct EvalBuffers<R: Real> {
     /// Points of each refinement level (level 0: the input positions).
     levels: Vec<Vec<Point3<R>>>,
     /// The analysed level's vertices followed by the phantom points.
@@ -296,55 +307,136 @@ pub(crate) struct Scratch<R: Real> {
     pub(crate) hole_tolerance: Option<f64>,
 }
 
+/// The lengths of a [`Scratch`]'s buffers for `plan` (`need`: the largest
+/// valence a polar cap reaches, [`polar_need`]): polar links, polar roots,
+/// links, c-net, Catmull-Clark storage.
+fn scratch_lens<R: Real>(plan: &SurfacePlan<'_>, need: usize) -> [usize; 5] {
+    let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
+    let max_ev = plan
+        .extraordinary
+        .iter()
+        .map(|e| e.sectors.len())
+        .max()
+        .unwrap_or(0);
+    [
+        SliceStorage::<R>::links_len(need),
+        SliceStorage::<R>::roots_len(need),
+        3 * max_n,
+        6 * max_ev,
+        CcCap::<R>::storage_len(max_ev.max(3)),
+    ]
+}
+
 impl<R: Real> Scratch<R> {
     /// Buffers for the caps of `plan`; `need` is the largest valence a polar
     /// cap reaches (its storage capacity, [`SliceStorage::links_len`]).
     pub(crate) fn new(plan: &SurfacePlan<'_>, need: usize) -> Result<Self, EvalError> {
-        let max_n = plan.polar.iter().map(|p| p.valence).max().unwrap_or(0);
-        let max_ev = plan
-            .extraordinary
-            .iter()
-            .map(|e| e.sectors.len())
-            .max()
-            .unwrap_or(0);
+        let [polar_links, polar_roots, links, cnet, cc] = scratch_lens::<R>(plan, need);
         Ok(Scratch {
-            polar_links: mem::filled(SliceStorage::<R>::links_len(need), Point3::ZERO)?,
-            polar_roots: mem::filled(SliceStorage::<R>::roots_len(need), [R::ZERO; 2])?,
-            links: mem::filled(3 * max_n, [R::ZERO; 3])?,
-            cnet: mem::filled(6 * max_ev, [R::ZERO; 3])?,
-            cc: mem::filled(CcCap::<R>::storage_len(max_ev.max(3)), Point3::ZERO)?,
+            polar_links: mem::filled(polar_links, Point3::ZERO)?,
+            polar_roots: mem::filled(polar_roots, [R::ZERO; 2])?,
+            links: mem::filled(links, [R::ZERO; 3])?,
+            cnet: mem::filled(cnet, [R::ZERO; 3])?,
+            cc: mem::filled(cc, Point3::ZERO)?,
             eg: Box::new(EgSubdivision::empty()),
             hole_tolerance: None,
         })
     }
+
+    /// Whether these buffers are the ones [`Scratch::new`] makes for `plan`.
+    fn fits(&self, plan: &SurfacePlan<'_>, need: usize) -> bool {
+        let lens = [
+            self.polar_links.len(),
+            self.polar_roots.len(),
+            self.links.len(),
+            self.cnet.len(),
+            self.cc.len(),
+        ];
+        lens == scratch_lens::<R>(plan, need)
+    }
 }
 
-impl<R: Real> Evaluator<R> {
+/// The built-in EG valences (3, 5) of `plan`'s EG caps, whose rules an
+/// evaluator holds in the Fourier basis.
+fn eg_valences<'a>(plan: &'a SurfacePlan<'_>) -> impl Iterator<Item = usize> + 'a {
+    [3, 5].into_iter().filter(|&n| {
+        plan.extraordinary
+            .iter()
+            .any(|e| e.scheme == Scheme::Eg && e.sectors.len() == n)
+    })
+}
+
+impl<R: Real> EvalBuffers<R> {
+    /// Whether these buffers are the ones [`Evaluator::new`] makes for
+    /// `plan` (`need`: its largest polar capacity); extra thread buffers
+    /// that are not are dropped.
+    fn fit(&mut self, plan: &SurfacePlan<'_>, need: usize) -> bool {
+        self.extra.retain(|s| s.fits(plan, need));
+        self.levels.len() == plan.steps.len() + 1
+            && self.levels.first().map(Vec::len) == Some(plan.input_vertices)
+            && self.levels[1..]
+                .iter()
+                .zip(&plan.steps)
+                .all(|(l, s)| l.len() == s.len())
+            && self.work.len() == plan.working_points()
+            && self.scratch.fits(plan, need)
+            && self
+                .eg_rules
+                .iter()
+                .map(|r| r.valence())
+                .eq(eg_valences(plan))
+    }
+}
+
+impl<'p, R: Real> Evaluator<'p, R> {
     /// Sizes every buffer for `plan`. [`EvalError::CapacityExceeded`] when a
     /// polar cap's deepest valence exceeds the largest tier,
     /// [`EvalError::OutOfMemory`] when a buffer cannot be allocated.
-    pub fn new(plan: &SurfacePlan<'_>) -> Result<Self, EvalError> {
+    pub fn new(plan: &'p SurfacePlan<'p>) -> Result<Self, EvalError> {
         let need = polar_need(plan)?;
         let mut levels = mem::with_capacity(plan.steps.len() + 1)?;
         levels.push(mem::filled(plan.input_vertices, Point3::ZERO)?);
         for s in &plan.steps {
             levels.push(mem::filled(s.len(), Point3::ZERO)?);
         }
-        Ok(Evaluator {
+        let buffers = EvalBuffers {
             levels,
             work: mem::filled(plan.working_points(), Point3::ZERO)?,
             scratch: Scratch::new(plan, need)?,
             extra: Vec::new(),
-            eg_rules: [3, 5]
-                .into_iter()
-                .filter(|&n| {
-                    plan.extraordinary
-                        .iter()
-                        .any(|e| e.scheme == Scheme::Eg && e.sectors.len() == n)
-                })
+            eg_rules: eg_valences(plan)
                 .filter_map(|n| FourierRule::new(&RuleTable::builtin(n)?).ok())
                 .collect(),
-        })
+        };
+        Ok(Evaluator { plan, buffers })
+    }
+
+    /// An evaluator for `plan` on `buffers` taken from an evaluator of the
+    /// same plan ([`Self::into_buffers`]), allocating nothing; buffers sized
+    /// for another plan are replaced by new ones, as [`Self::new`] sizes
+    /// them. The hole tolerance ([`Self::set_hole_tolerance`]) is kept.
+    pub fn with_buffers(
+        plan: &'p SurfacePlan<'p>,
+        mut buffers: EvalBuffers<R>,
+    ) -> Result<Self, EvalError> {
+        let need = polar_need(plan)?;
+        if buffers.fit(plan, need) {
+            return Ok(Evaluator { plan, buffers });
+        }
+        let tolerance = buffers.scratch.hole_tolerance;
+        let mut fresh = Self::new(plan)?;
+        fresh.set_hole_tolerance(tolerance);
+        Ok(fresh)
+    }
+
+    /// The buffers, to keep beside the plan ([`Self::with_buffers`]).
+    pub fn into_buffers(self) -> EvalBuffers<R> {
+        self.buffers
+    }
+
+    /// The plan it evaluates.
+    pub fn plan(&self) -> &'p SurfacePlan<'p> {
+        self.plan
     }
 
     /// Each cap emits rings until the hole left inside its last ring is at
@@ -355,7 +447,8 @@ impl<R: Real> Evaluator<R> {
     /// lie in their control points' convex hull). The rings of the adaptive
     /// refinement around irregular points keep the plan's depth.
     pub fn set_hole_tolerance(&mut self, tolerance: Option<f64>) {
-        for s in core::iter::once(&mut self.scratch).chain(&mut self.extra) {
+        let b = &mut self.buffers;
+        for s in core::iter::once(&mut b.scratch).chain(&mut b.extra) {
             s.hole_tolerance = tolerance;
         }
     }
@@ -363,19 +456,19 @@ impl<R: Real> Evaluator<R> {
     /// Evaluates the surface for `positions` (one per input vertex): the
     /// regular patches and caps in [`SurfacePlan::order`], each cap's
     /// patches followed by its record.
-    pub fn evaluate<'t>(
+    pub fn evaluate(
         &mut self,
-        plan: &SurfacePlan<'t>,
         positions: &[[R; 3]],
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
-        self.prepare(plan, positions, |s, src, out| s.apply(src, out))?;
+        self.prepare(positions, |s, src, out| s.apply(src, out))?;
+        let plan = self.plan;
+        let b = &mut self.buffers;
         for &unit in &plan.order {
             match unit {
-                Unit::Regular(i) => emit_regular(plan, &self.work, i as usize, sink),
+                Unit::Regular(i) => emit_regular(plan, &b.work, i as usize, sink),
                 Unit::Cap(index) => {
-                    self.scratch
-                        .cap(&self.work, &self.eg_rules, plan, index, sink)?;
+                    b.scratch.cap(&b.work, &b.eg_rules, plan, index, sink)?;
                 }
             }
         }
@@ -387,11 +480,12 @@ impl<R: Real> Evaluator<R> {
     /// gathers from.
     pub(crate) fn prepare(
         &mut self,
-        plan: &SurfacePlan<'_>,
         positions: &[[R; 3]],
         apply: impl Fn(&crate::StencilTable, &[Point3<R>], &mut [Point3<R>]),
     ) -> Result<(), EvalError> {
-        if positions.len() != plan.input_vertices || self.levels[0].len() != positions.len() {
+        let plan = self.plan;
+        let b = &mut self.buffers;
+        if positions.len() != plan.input_vertices || b.levels[0].len() != positions.len() {
             return Err(EvalError::WrongLength {
                 expected: plan.input_vertices,
                 found: positions.len(),
@@ -403,23 +497,23 @@ impl<R: Real> Evaluator<R> {
         {
             return Err(EvalError::NonFinite { vertex });
         }
-        for (d, s) in self.levels[0].iter_mut().zip(positions) {
+        for (d, s) in b.levels[0].iter_mut().zip(positions) {
             *d = Point3(*s);
         }
         for (k, s) in plan.steps.iter().enumerate() {
-            let (src, dst) = self.levels.split_at_mut(k + 1);
+            let (src, dst) = b.levels.split_at_mut(k + 1);
             apply(s, &src[k], &mut dst[0]);
         }
-        let last = self.levels.last().map(Vec::as_slice).unwrap_or(&[]);
-        let split = plan.vertices.min(self.work.len());
-        let (verts, phantoms) = self.work.split_at_mut(split);
+        let last = b.levels.last().map(Vec::as_slice).unwrap_or(&[]);
+        let split = plan.vertices.min(b.work.len());
+        let (verts, phantoms) = b.work.split_at_mut(split);
         verts.copy_from_slice(&last[..verts.len()]);
         plan.phantoms.apply_chained(verts, phantoms);
         // Regular patches are convex combinations of these points: below
         // MAX/2 they are finite. `(p + p)·0` is zero unless a coordinate is
         // above MAX/2 or not finite (then NaN, which the sum keeps).
         let mut probe = Point3::ZERO;
-        for p in &self.work {
+        for p in &b.work {
             probe += (*p + *p) * R::ZERO;
         }
         if !probe.is_finite() {

@@ -48,7 +48,7 @@
 //! // Positions through the plan, as often as the vertices move.
 //! let mut evaluator = Evaluator::<f64>::new(&plan).unwrap();
 //! let mut sink = Count::default();
-//! evaluator.evaluate(&plan, &vertices, &mut sink).unwrap();
+//! evaluator.evaluate(&vertices, &mut sink).unwrap();
 //! assert_eq!(sink.caps, vec![(Scheme::Eg, 3); 8]);
 //! assert!(sink.eg_patches > 0);
 //! # Ok::<(), capdiv_mesh::MeshError>(())
@@ -88,7 +88,9 @@ pub mod tessellate;
 pub mod topology;
 
 pub use error::MeshError;
-pub use evaluate::{CapRecord, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink};
+pub use evaluate::{
+    CapRecord, EvalBuffers, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink,
+};
 pub use facevarying::{FaceVarying, PatchUv};
 pub use input::{
     BoundaryInterpolation, CreaseMethod, EdgeCrease, MeshInput, SubdivTags, TriangleSubdivision,

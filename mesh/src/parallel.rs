@@ -201,7 +201,7 @@ fn apply_parallel<R: Real + Send + Sync>(
         .for_each(|(b, block)| table.apply_from(src, block, b * STENCIL_BLOCK));
 }
 
-impl<R: Real + Send + Sync> Evaluator<R> {
+impl<R: Real + Send + Sync> Evaluator<'_, R> {
     /// [`Self::evaluate`] over the threads of the current rayon pool (the
     /// global one, or the one a caller entered with `ThreadPool::install`):
     /// the sink receives the same records, bit for bit, in the same order,
@@ -212,30 +212,31 @@ impl<R: Real + Send + Sync> Evaluator<R> {
     /// of a few pieces per thread are held until the sink has them.
     pub fn evaluate_parallel(
         &mut self,
-        plan: &SurfacePlan<'_>,
         positions: &[[R; 3]],
         sink: &mut dyn SurfaceSink<R>,
     ) -> Result<(), EvalError> {
         let threads = rayon::current_num_threads().max(1);
         if threads == 1 {
-            return self.evaluate(plan, positions, sink);
+            return self.evaluate(positions, sink);
         }
-        self.prepare(plan, positions, apply_parallel)?;
-        if self.extra.len() + 1 < threads {
+        self.prepare(positions, apply_parallel)?;
+        let plan = self.plan();
+        let b = &mut self.buffers;
+        if b.extra.len() + 1 < threads {
             let need = polar_need(plan)?;
-            let more = threads - 1 - self.extra.len();
-            mem::reserve_exact(&mut self.extra, more)?;
-            while self.extra.len() + 1 < threads {
+            let more = threads - 1 - b.extra.len();
+            mem::reserve_exact(&mut b.extra, more)?;
+            while b.extra.len() + 1 < threads {
                 let mut extra = Scratch::new(plan, need)?;
-                extra.hole_tolerance = self.scratch.hole_tolerance;
-                self.extra.push(extra);
+                extra.hole_tolerance = b.scratch.hole_tolerance;
+                b.extra.push(extra);
             }
         }
         let pieces = pieces(plan)?;
-        let (work, rules) = (&self.work, &self.eg_rules);
+        let (work, rules) = (&b.work, &b.eg_rules);
         let mut scratches: Vec<&mut Scratch<R>> = mem::with_capacity(threads)?;
-        scratches.push(&mut self.scratch);
-        scratches.extend(self.extra.iter_mut().take(threads - 1));
+        scratches.push(&mut b.scratch);
+        scratches.extend(b.extra.iter_mut().take(threads - 1));
         let per_window = PIECES_PER_THREAD * threads;
         let slots = || -> Result<Vec<Mutex<Done<R>>>, OutOfMemory> {
             let mut v = mem::with_capacity(per_window)?;

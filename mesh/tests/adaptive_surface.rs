@@ -39,7 +39,7 @@ fn plan_and_evaluate(m: &MeshInput, depth: u32, cc: bool) -> (SurfacePlan<'stati
     assert!(plan.uncovered.is_empty(), "uncovered {:?}", plan.uncovered);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
-    ev.evaluate(&plan, &m.vertices, &mut c).expect("evaluate");
+    ev.evaluate(&m.vertices, &mut c).expect("evaluate");
     (plan, c)
 }
 

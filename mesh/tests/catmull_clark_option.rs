@@ -40,7 +40,7 @@ fn surface_with(
     .expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
-    ev.evaluate(&plan, &m.vertices, &mut c).expect("evaluate");
+    ev.evaluate(&m.vertices, &mut c).expect("evaluate");
     (plan, c)
 }
 

@@ -62,8 +62,7 @@ fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge>
         let mut sink = Collect {
             patches: Vec::new(),
         };
-        ev.evaluate(&plan, &positions, &mut sink)
-            .expect("evaluates");
+        ev.evaluate(&positions, &mut sink).expect("evaluates");
         let size = positions
             .iter()
             .flatten()

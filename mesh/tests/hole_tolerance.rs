@@ -38,8 +38,7 @@ fn evaluate(mesh: &MeshInput, depth: u32, tolerance: Option<f64>) -> Collect {
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     ev.set_hole_tolerance(tolerance);
     let mut c = Collect::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut c)
-        .expect("evaluate");
+    ev.evaluate(&mesh.vertices, &mut c).expect("evaluate");
     c
 }
 

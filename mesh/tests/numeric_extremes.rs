@@ -66,7 +66,7 @@ fn check<R: capdiv::Real>(
 ) -> Result<(), EvalError> {
     let mut ev = Evaluator::<R>::new(plan).expect("evaluator");
     let mut out = Collect::<R>::default();
-    ev.evaluate(plan, positions, &mut out)?;
+    ev.evaluate(positions, &mut out)?;
     let fin = |p: &Point3<R>| p.is_finite();
     for p in &out.patches {
         let pts: Vec<Point3<R>> = match &p.geometry {
@@ -186,7 +186,7 @@ fn evaluate_all<R: capdiv::Real>(
 ) -> (Result<(), EvalError>, usize) {
     let mut ev = Evaluator::<R>::new(plan).expect("evaluator");
     let mut out = Collect::<R>::default();
-    let r = ev.evaluate(plan, positions, &mut out);
+    let r = ev.evaluate(positions, &mut out);
     (r, out.patches.len() + out.caps.len())
 }
 

@@ -150,7 +150,7 @@ fn hole_points_take_the_uv_of_the_caps_centre_in_the_patchs_face() {
             let mut sink = Patches::default();
             Evaluator::<f64>::new(&plan)
                 .unwrap()
-                .evaluate(&plan, &m.vertices, &mut sink)
+                .evaluate(&m.vertices, &mut sink)
                 .unwrap();
             for p in sink
                 .0
@@ -201,7 +201,7 @@ fn every_patch_carries_opensubdivs_uvs_over_its_domain() {
         let mut sink = Patches::default();
         Evaluator::<f64>::new(&plan)
             .unwrap()
-            .evaluate(&plan, &m.vertices, &mut sink)
+            .evaluate(&m.vertices, &mut sink)
             .unwrap();
         // Patch parameters: the corners and an inner point.
         let params = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.3, 0.7)];
@@ -269,7 +269,7 @@ fn polar_patches_take_their_triangles_uvs_along_the_spokes() {
     let mut sink = Patches::default();
     Evaluator::<f64>::new(&plan)
         .unwrap()
-        .evaluate(&plan, &m.vertices, &mut sink)
+        .evaluate(&m.vertices, &mut sink)
         .unwrap();
     let mut worst = 0.0f64;
     let mut swapped = 0.0f64;

@@ -86,7 +86,7 @@ fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) 
     );
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
-    ev.evaluate(&plan, &m.vertices, &mut c).expect("evaluate");
+    ev.evaluate(&m.vertices, &mut c).expect("evaluate");
     assert!(!c.patches.is_empty(), "{name}: no patches");
     let mut job = Job::new(m);
     job.isolation = 10;

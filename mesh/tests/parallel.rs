@@ -52,7 +52,7 @@ fn compare<R: Real + Send + Sync + std::fmt::Debug>(
     let mut serial = Log::default();
     Evaluator::<R>::new(&plan)
         .unwrap()
-        .evaluate(&plan, &positions, &mut serial)
+        .evaluate(&positions, &mut serial)
         .unwrap();
     assert!(serial.patches > 0, "{name}");
     for threads in [2, 3, 5] {
@@ -60,7 +60,7 @@ fn compare<R: Real + Send + Sync + std::fmt::Debug>(
         for round in 0..2 {
             let mut par = Log::default();
             pool(threads)
-                .install(|| ev.evaluate_parallel(&plan, &positions, &mut par))
+                .install(|| ev.evaluate_parallel(&positions, &mut par))
                 .unwrap();
             assert_eq!(
                 par.lines.len(),
@@ -139,7 +139,7 @@ fn parallel_errors_are_the_serial_errors() {
     let mut short = mesh.vertices.clone();
     short.pop();
     let run = |ev: &mut Evaluator<f64>, v: &[[f64; 3]]| {
-        pool(2).install(|| ev.evaluate_parallel(&plan, v, &mut Log::default()))
+        pool(2).install(|| ev.evaluate_parallel(v, &mut Log::default()))
     };
     assert_eq!(
         run(&mut ev, &short),
@@ -153,8 +153,5 @@ fn parallel_errors_are_the_serial_errors() {
     assert_eq!(run(&mut ev, &bad), Err(EvalError::NonFinite { vertex: 3 }));
     let mut huge = mesh.vertices.clone();
     huge[5][0] = f64::MAX;
-    assert_eq!(
-        run(&mut ev, &huge),
-        ev.evaluate(&plan, &huge, &mut Log::default())
-    );
+    assert_eq!(run(&mut ev, &huge), ev.evaluate(&huge, &mut Log::default()));
 }

@@ -122,7 +122,7 @@ fn positions_as_a_primvar_make_the_evaluators_regular_patches() {
         let mut sink = Regular::default();
         Evaluator::<f64>::new(&p)
             .unwrap()
-            .evaluate(&p, &m.vertices, &mut sink)
+            .evaluate(&m.vertices, &mut sink)
             .unwrap();
         let work = p.refine_primvar(&m.vertices).unwrap();
         assert_eq!(sink.0.len(), p.regular.len(), "{name}");

@@ -98,7 +98,7 @@ fn pipeline(m: &MeshInput, depth: u32) -> bool {
     };
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut out = Collect::default();
-    ev.evaluate(&plan, &m.vertices, &mut out).expect("evaluate");
+    ev.evaluate(&m.vertices, &mut out).expect("evaluate");
     for p in &out.patches {
         assert!(
             control_grid(&p.geometry)
@@ -234,13 +234,13 @@ fn f32_tracks_f64() {
         let mut out64 = Collect::default();
         Evaluator::<f64>::new(&plan)
             .unwrap()
-            .evaluate(&plan, &m.vertices, &mut out64)
+            .evaluate(&m.vertices, &mut out64)
             .unwrap();
         let pos32: Vec<[f32; 3]> = m.vertices.iter().map(|p| p.map(|c| c as f32)).collect();
         let mut out32 = Collect::default();
         Evaluator::<f32>::new(&plan)
             .unwrap()
-            .evaluate(&plan, &pos32, &mut out32)
+            .evaluate(&pos32, &mut out32)
             .unwrap();
         assert_eq!(out32.patches.len(), out64.patches.len());
         let mut size = 0.0f64;

@@ -42,8 +42,7 @@ fn patches(mesh: &MeshInput, depth: u32) -> Vec<PatchRecord<f64>> {
     let plan = plan(mesh, depth);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut c)
-        .expect("evaluate");
+    ev.evaluate(&mesh.vertices, &mut c).expect("evaluate");
     c.patches
 }
 
@@ -180,7 +179,7 @@ fn tessellating_sink_streams_the_evaluation() {
         tag: |p| p.level,
     };
     let mut ev = Evaluator::<f64>::new(&plan).unwrap();
-    ev.evaluate(&plan, &mesh.vertices, &mut sink).unwrap();
+    ev.evaluate(&mesh.vertices, &mut sink).unwrap();
     let s = tess.finish(&mut out);
     assert_same("mushroom through the sink", &collected, &out, &s);
     assert_eq!(s.closed, Ok(()));
@@ -374,8 +373,7 @@ fn the_emission_order_gives_every_patch_and_cap_once() {
         }
         let mut sink = Order::default();
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-        ev.evaluate(&plan, &mesh.vertices, &mut sink)
-            .expect("evaluate");
+        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
         assert_eq!(sink.late, 0, "{name}");
         assert_eq!(sink.regular, plan.regular.len(), "{name}");
         let mut ended = sink.ended.clone();

@@ -105,7 +105,7 @@ fn surface(m: &MeshInput) -> (Vec<PatchRecord<f64>>, FaceVarying) {
     let mut c = Collect::default();
     Evaluator::<f64>::new(&plan)
         .unwrap()
-        .evaluate(&plan, &m.vertices, &mut c)
+        .evaluate(&m.vertices, &mut c)
         .unwrap();
     (c.0, fv)
 }

@@ -602,14 +602,8 @@ pub fn run_scheme<R: Scalar>(
     let tolerance = options.tolerance.absolute(diagonal(mesh));
     evaluator.set_hole_tolerance(tolerance);
     let mut tally = Tally::new(sink);
-    crate::threads::evaluate(
-        options.threads,
-        &mut evaluator,
-        &plan,
-        &positions,
-        &mut tally,
-    )
-    .map_err(eval_err)?;
+    crate::threads::evaluate(options.threads, &mut evaluator, &positions, &mut tally)
+        .map_err(eval_err)?;
     let evaluation = start.elapsed();
 
     if !tally.finite {

@@ -150,8 +150,7 @@ pub fn surface(mesh: &MeshInput, depth: u32) -> (SurfacePlan<'static>, Collect<f
     .expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
-    ev.evaluate(&plan, &mesh.vertices, &mut c)
-        .expect("evaluate");
+    ev.evaluate(&mesh.vertices, &mut c).expect("evaluate");
     (plan, c)
 }
 

@@ -47,7 +47,7 @@ fn main() {
             .map(|r| {
                 pos[v][0] = mesh.vertices[v][0] + 0.01 * (r % 2) as f64;
                 let t = Instant::now();
-                ev.evaluate(&plan, &pos, &mut Null).unwrap();
+                ev.evaluate(&pos, &mut Null).unwrap();
                 t.elapsed().as_secs_f64() * 1e3
             })
             .collect();

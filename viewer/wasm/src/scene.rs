@@ -12,8 +12,8 @@ use capdiv_mesh::tessellate::weld::representatives;
 use capdiv_mesh::tessellate::{write_obj, write_point};
 use capdiv_mesh::tessellate::{Face, Tessellation};
 use capdiv_mesh::{
-    BoundaryInterpolation, CreaseMethod, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology,
-    TriangleSubdivision,
+    BoundaryInterpolation, CreaseMethod, EvalBuffers, Evaluator, MeshInput, PlanOptions,
+    SurfacePlan, Topology, TriangleSubdivision,
 };
 use std::fmt::Write;
 
@@ -102,10 +102,11 @@ pub fn auto_grid(plan: &SurfacePlan<'_>) -> usize {
         .unwrap_or(1)
 }
 
-/// The plan and evaluator of one option set.
+/// The plan of one option set and the buffers of its evaluator (taken back
+/// by each evaluation: [`Evaluator::with_buffers`]).
 struct Analysis {
     plan: SurfacePlan<'static>,
-    evaluator: Evaluator<f64>,
+    buffers: Option<EvalBuffers<f64>>,
     grid: usize,
 }
 
@@ -114,7 +115,9 @@ impl Analysis {
     /// holes, boundary rule: [`SurfacePlan::for_mesh`]).
     fn new(mesh: &MeshInput, o: &Options) -> Result<Self, String> {
         let plan = SurfacePlan::for_mesh(mesh, plan_options(o)?).map_err(|e| e.to_string())?;
-        let evaluator = Evaluator::new(&plan).map_err(|e| e.to_string())?;
+        let buffers = Evaluator::new(&plan)
+            .map_err(|e| e.to_string())?
+            .into_buffers();
         let grid = if o.grid == 0 {
             auto_grid(&plan)
         } else {
@@ -122,7 +125,7 @@ impl Analysis {
         };
         Ok(Analysis {
             plan,
-            evaluator,
+            buffers: Some(buffers),
             grid,
         })
     }
@@ -205,24 +208,27 @@ impl Scene {
     fn evaluate(&mut self) -> Result<(), String> {
         let a = &mut self.analysis;
         let base = a.plan.steps.len() as u32;
+        let mut evaluator = match a.buffers.take() {
+            Some(buffers) => Evaluator::with_buffers(&a.plan, buffers),
+            None => Evaluator::new(&a.plan),
+        }
+        .map_err(|e| e.to_string())?;
         let mut rebuild = self.new_plan;
-        loop {
+        let result = loop {
             self.tess.begin(rebuild, base, a.grid);
-            let r = a
-                .evaluator
-                .evaluate(&a.plan, &self.positions, &mut self.tess);
-            if let Err(e) = r {
+            if let Err(e) = evaluator.evaluate(&self.positions, &mut self.tess) {
                 // Partly re-sampled: the next evaluation starts afresh.
                 self.new_plan = true;
-                return Err(e.to_string());
+                break Err(e.to_string());
             }
             if self.tess.finish() {
-                break;
+                self.new_plan = false;
+                break Ok(());
             }
             rebuild = true;
-        }
-        self.new_plan = false;
-        Ok(())
+        };
+        a.buffers = Some(evaluator.into_buffers());
+        result
     }
 
     /// The sampled surface.
