@@ -82,6 +82,28 @@ fn strip_bom(text: &str) -> &str {
 /// Reads the vertices, faces and subdivision tags of a Wavefront OBJ text;
 /// face indices become 0-based. See the module doc for what is read, ignored
 /// and checked.
+///
+/// # Example
+///
+/// A quad with OpenSubdiv's tag lines (`t NAME nint/nfloat/nstring ints
+/// floats strings`): edge 0–1 creased with sharpness 2.5, face 0 a hole.
+///
+/// ```
+/// use capdiv_mesh::obj::parse_obj;
+///
+/// let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n\
+///             t crease 2/1/0 0 1 2.5\nt hole 1/0/0 0\n";
+/// let mesh = parse_obj(text)?;
+/// assert_eq!(mesh.faces, vec![vec![0, 1, 2, 3]]);
+/// assert_eq!(mesh.tags.creases[0].vertices, [0, 1]);
+/// assert_eq!(mesh.tags.creases[0].sharpness, 2.5);
+/// assert_eq!(mesh.tags.holes, vec![0]);
+///
+/// // A malformed tag is an error that names its line.
+/// let err = parse_obj("v 0 0 0\nt crease 2/1/0 0\n").unwrap_err();
+/// assert!(err.to_string().contains("line 2"));
+/// # Ok::<(), capdiv_mesh::MeshError>(())
+/// ```
 pub fn parse_obj(text: &str) -> Result<MeshInput, MeshError> {
     parse_obj_objects(text).map(|(mesh, _)| mesh)
 }

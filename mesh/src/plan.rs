@@ -365,6 +365,29 @@ impl<'t> SurfacePlan<'t> {
     /// consistently oriented manifold, caps and level-0 patches go only
     /// where no tag reaches them and every other face is refined adaptively
     /// with OpenSubdiv's rules ([`crate::adaptive`]).
+    ///
+    /// # Example
+    ///
+    /// The cube's corners are valence-3 points that touch each other, so
+    /// the whole mesh is refined once (rule 4 of the module doc); then each
+    /// corner's c-net is there and its three faces become an EG cap — or a
+    /// Catmull-Clark cap with [`PlanOptions::catmull_clark`].
+    ///
+    /// ```
+    /// use capdiv_mesh::{samples, PlanOptions, Scheme, SurfacePlan};
+    ///
+    /// let cube = samples::cube();
+    /// let plan = SurfacePlan::for_mesh(&cube, PlanOptions::default())?;
+    /// assert_eq!(plan.steps.len(), 1);
+    /// assert!(plan.regular.is_empty() && plan.uncovered.is_empty());
+    /// assert_eq!(plan.extraordinary.len(), 8);
+    /// assert!(plan.extraordinary.iter().all(|c| c.scheme == Scheme::Eg));
+    ///
+    /// let baseline = PlanOptions { catmull_clark: true, ..Default::default() };
+    /// let plan = SurfacePlan::for_mesh(&cube, baseline)?;
+    /// assert!(plan.extraordinary.iter().all(|c| c.scheme == Scheme::CatmullClark));
+    /// # Ok::<(), capdiv_mesh::MeshError>(())
+    /// ```
     pub fn for_mesh(mesh: &MeshInput, options: PlanOptions<'t>) -> Result<Self, MeshError> {
         validate(mesh)?;
         let topo = Topology::new(mesh).ok();

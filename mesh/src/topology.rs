@@ -71,6 +71,19 @@ pub struct Topology {
 impl Topology {
     /// Validates `mesh` and builds its half-edges. See the module doc for the
     /// checks and their order.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// use capdiv_mesh::{samples, Topology};
+    ///
+    /// let topo = Topology::new(&samples::cube())?;
+    /// assert_eq!((topo.num_vertices(), topo.num_faces()), (8, 6));
+    /// assert_eq!(topo.num_half_edges(), 24);
+    /// assert!(topo.is_closed());
+    /// assert!((0..8).all(|v| topo.vertex_face_count(v) == 3));
+    /// # Ok::<(), capdiv_mesh::MeshError>(())
+    /// ```
     pub fn new(mesh: &MeshInput) -> Result<Self, MeshError> {
         check_sizes_and_positions(mesh)?;
         Self::from_faces(mesh.vertices.len(), &mesh.faces)
