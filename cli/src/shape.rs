@@ -26,11 +26,9 @@ use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, HeapStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan,
-    SurfaceSink,
-};
+use capdiv_mesh::{Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan};
 
 /// One patch of a [`Shape`].
 #[derive(Clone, Debug)]
@@ -390,21 +388,6 @@ fn polar_cc(name: &str, input: &PolarInput, depth: u32) -> Result<Shape, CliErro
     Ok(shape)
 }
 
-#[derive(Default)]
-struct Collect {
-    patches: Vec<PatchRecord<f64>>,
-    caps: Vec<CapRecord<f64>>,
-}
-
-impl SurfaceSink<f64> for Collect {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.caps.push(c.clone());
-    }
-}
-
 /// A mesh through `capdiv_mesh`; the curvature table follows the cap at
 /// input vertex 0 when it has one (a polar configuration's pole), else every
 /// cap. `keep`: only input faces below this index.
@@ -427,9 +410,12 @@ fn mesh_shape(
     .map_err(mesh_err)?;
     check_size(name, &plan, DEFAULT_MAX_PATCHES)?;
     let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::eval(name, error))?;
-    let mut out = Collect::default();
+    let mut out = CollectSurface::new();
     ev.evaluate(&mesh.vertices, &mut out)
         .map_err(|error| CliError::eval(name, error))?;
+    if let Some(e) = out.refused() {
+        return Err(CliError::out_of_memory(name, e.bytes));
+    }
     let followed: Vec<u32> = match out.caps.iter().find(|c| c.vertex == Some(0)) {
         Some(c) if keep.is_some() => vec![c.index],
         _ => out.caps.iter().map(|c| c.index).collect(),

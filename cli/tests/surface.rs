@@ -5,10 +5,8 @@
 mod common;
 
 use capdiv_mesh::samples;
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, SurfaceSink,
-    Topology,
-};
+use capdiv_mesh::sinks::CollectSurface;
+use capdiv_mesh::{Evaluator, MeshInput, PatchRecord, PlanOptions, Scheme, SurfacePlan, Topology};
 use common::*;
 use serde_json::{json, Value};
 use std::collections::HashMap;
@@ -89,22 +87,9 @@ fn untimed(mut v: Value) -> Value {
     v
 }
 
-struct Collect<R> {
-    patches: Vec<PatchRecord<R>>,
-    caps: Vec<CapRecord<R>>,
-}
-impl<R: Clone> SurfaceSink<R> for Collect<R> {
-    fn patch(&mut self, p: &PatchRecord<R>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<R>) {
-        self.caps.push(c.clone());
-    }
-}
-
 /// The library's own evaluation of `m`, and its plan's patch counts per
 /// kind computed from the plan's structure.
-fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, usize>) {
+fn library(m: &MeshInput, depth: u32) -> (CollectSurface<f64>, HashMap<&'static str, usize>) {
     let topo = Topology::new(m).unwrap();
     let plan = SurfacePlan::new(
         &topo,
@@ -136,10 +121,7 @@ fn library(m: &MeshInput, depth: u32) -> (Collect<f64>, HashMap<&'static str, us
         );
     }
     let mut ev = Evaluator::<f64>::new(&plan).unwrap();
-    let mut sink = Collect {
-        patches: vec![],
-        caps: vec![],
-    };
+    let mut sink = CollectSurface::new();
     ev.evaluate(&m.vertices, &mut sink).unwrap();
     (sink, counts)
 }
@@ -625,10 +607,7 @@ fn f32_patches_equal_the_library_in_f32() {
     .unwrap();
     let pos: Vec<[f32; 3]> = m.vertices.iter().map(|p| p.map(|c| c as f32)).collect();
     let mut ev = Evaluator::<f32>::new(&plan).unwrap();
-    let mut sink = Collect {
-        patches: vec![],
-        caps: vec![],
-    };
+    let mut sink = CollectSurface::new();
     ev.evaluate(&pos, &mut sink).unwrap();
     let patches = out["patches"].as_array().unwrap();
     assert_eq!(patches.len(), sink.patches.len());

@@ -29,27 +29,13 @@ use arbitrary::{Result, Unstructured};
 use capdiv::Point3;
 use capdiv_fuzz::FuzzReal;
 use capdiv_mesh::obj::parse_obj;
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry};
 use capdiv_mesh::{
-    samples, BoundaryInterpolation, CapRecord, CreaseMethod, EdgeCrease, EvalError, Evaluator,
-    MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology, TriangleSubdivision,
-    VertexCorner,
+    samples, BoundaryInterpolation, CreaseMethod, EdgeCrease, EvalError, Evaluator, MeshInput,
+    PlanOptions, SurfacePlan, Topology, TriangleSubdivision, VertexCorner,
 };
 use libfuzzer_sys::fuzz_target;
-
-struct Collect<R> {
-    patches: Vec<PatchRecord<R>>,
-    caps: Vec<CapRecord<R>>,
-}
-
-impl<R: Clone> SurfaceSink<R> for Collect<R> {
-    fn patch(&mut self, p: &PatchRecord<R>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<R>) {
-        self.caps.push(c.clone());
-    }
-}
 
 fn points<R: FuzzReal>(g: &PatchGeometry<R>) -> Vec<Point3<R>> {
     match g {
@@ -71,16 +57,14 @@ fn evaluate<R: FuzzReal>(
 ) -> Option<bool> {
     let mut ev = Evaluator::<R>::new(plan).ok()?;
     let positions: Vec<[R; 3]> = positions.iter().map(|p| p.map(R::from_f64)).collect();
-    let mut sink = Collect {
-        patches: Vec::new(),
-        caps: Vec::new(),
-    };
+    let mut sink = CollectSurface::new();
     // Every successful evaluation is finite, at any magnitude (overflow is
     // EvalError::Overflow or the kernel's NonFinite).
     // The only evaluation errors a plan for_mesh made may meet are numeric
     // (positions the fuzzer scaled to overflow): a cap the kernel refuses
     // for its shape is a planning bug.
     match ev.evaluate(&positions, &mut sink) {
+        Ok(()) if sink.refused().is_some() => return None,
         Ok(()) => {}
         Err(EvalError::Overflow | EvalError::NonFinite { .. }) => return None,
         Err(EvalError::Kernel {

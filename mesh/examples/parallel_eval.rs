@@ -5,6 +5,7 @@
 //!
 //! `cargo run --release -p capdiv-mesh --features parallel --example parallel_eval [REPEATS]`
 
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::{
     samples, CapRecord, Evaluator, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
 };
@@ -18,18 +19,6 @@ impl SurfaceSink<f64> for Count {
         self.0 += p.level as usize;
     }
     fn cap(&mut self, _: &CapRecord<f64>) {}
-}
-
-#[derive(Default)]
-struct Keep(Vec<PatchRecord<f64>>, Vec<CapRecord<f64>>);
-
-impl SurfaceSink<f64> for Keep {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.1.push(c.clone());
-    }
 }
 
 fn median(mut x: Vec<f64>) -> f64 {
@@ -88,7 +77,7 @@ fn main() {
         for sink in ["count", "keep"] {
             let run = |threads| match sink {
                 "count" => time::<Count>(repeats, threads, &plan, &mesh.vertices),
-                _ => time::<Keep>(repeats, threads, &plan, &mesh.vertices),
+                _ => time::<CollectSurface<f64>>(repeats, threads, &plan, &mesh.vertices),
             };
             let (one, two) = (run(1), run(2));
             println!(

@@ -82,6 +82,7 @@ pub mod parallel;
 pub mod plan;
 pub mod samples;
 pub mod shade;
+pub mod sinks;
 pub mod stencil;
 pub mod tags;
 pub mod tessellate;

@@ -45,13 +45,14 @@ use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
+use capdiv_mesh::sinks::{CollectSurface, SurfaceStats, Tee};
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
     Tessellation,
 };
 use capdiv_mesh::{
-    CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
-    SurfacePlan, SurfaceSink, Topology,
+    CapRecord, Evaluator, FaceVarying, MeshInput, PatchRecord, PatchUv, PlanOptions, SurfacePlan,
+    SurfaceSink, Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -352,41 +353,6 @@ pub struct Surface<R> {
     pub summary: Summary,
 }
 
-struct Collect<R> {
-    patches: Vec<PatchRecord<R>>,
-    caps: Vec<CapRecord<R>>,
-    /// Bytes of the first growth the allocator refused (the records from
-    /// then on are dropped, and the surface is an out-of-memory error).
-    refused: Option<usize>,
-}
-
-impl<R> Collect<R> {
-    fn new() -> Self {
-        Collect {
-            patches: Vec::new(),
-            caps: Vec::new(),
-            refused: None,
-        }
-    }
-}
-
-impl<R: Clone> SurfaceSink<R> for Collect<R> {
-    fn patch(&mut self, p: &PatchRecord<R>) {
-        if self.refused.is_none() {
-            self.refused = capdiv_mesh::mem::push(&mut self.patches, p.clone())
-                .err()
-                .map(|e| e.bytes);
-        }
-    }
-    fn cap(&mut self, c: &CapRecord<R>) {
-        if self.refused.is_none() {
-            self.refused = capdiv_mesh::mem::push(&mut self.caps, c.clone())
-                .err()
-                .map(|e| e.bytes);
-        }
-    }
-}
-
 /// Refuses a plan of more than `max` patches ([`CliError::TooLarge`]).
 pub fn check_size(name: &str, plan: &SurfacePlan<'_>, max: u64) -> Result<(), CliError> {
     check_bound(name, plan, max, false)
@@ -463,18 +429,18 @@ pub fn build_with<R: Scalar>(
     mesh: &MeshInput,
     options: &SchemeOptions<'_>,
 ) -> Result<Surface<R>, CliError> {
-    let mut sink = Collect::new();
+    let mut sink = CollectSurface::new();
     let (summary, facevarying) = run_scheme::<R>(name, mesh, options, &mut sink)?;
-    if let Some(bytes) = sink.refused {
-        return Err(CliError::out_of_memory(name, bytes));
-    }
+    let (patches, caps) = sink
+        .finish()
+        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
     let uvs = match facevarying {
-        Some(fv) => sink.patches.iter().map(|p| fv.patch(p)).collect(),
+        Some(fv) => patches.iter().map(|p| fv.patch(p)).collect(),
         None => Vec::new(),
     };
     Ok(Surface {
-        patches: sink.patches,
-        caps: sink.caps,
+        patches,
+        caps,
         uvs,
         summary,
     })
@@ -497,70 +463,6 @@ pub struct SchemeOptions<'a> {
     pub tolerance: Tolerance,
     /// Threads that evaluate (`None`: [`crate::threads::default_threads`]).
     pub threads: Option<usize>,
-}
-
-/// Counts of the patches and caps passing to another sink.
-pub struct Tally<'a, R> {
-    inner: &'a mut (dyn SurfaceSink<R> + Send),
-    patches: PatchCounts,
-    levels: Vec<usize>,
-    caps: Vec<CapCount>,
-    rings: Option<[u32; 2]>,
-    finite: bool,
-}
-
-impl<'a, R: Scalar> Tally<'a, R> {
-    /// Counts what goes to `inner`.
-    pub fn new(inner: &'a mut (dyn SurfaceSink<R> + Send)) -> Self {
-        Tally {
-            inner,
-            patches: PatchCounts::default(),
-            levels: Vec::new(),
-            caps: Vec::new(),
-            rings: None,
-            finite: true,
-        }
-    }
-}
-
-impl<R: Scalar> SurfaceSink<R> for Tally<'_, R> {
-    fn patch(&mut self, p: &PatchRecord<R>) {
-        self.finite &= geometry_points(p).all(|q| q.is_finite());
-        match p.kind {
-            PatchKind::Regular => self.patches.regular += 1,
-            PatchKind::C2ps => self.patches.c2ps += 1,
-            PatchKind::Eg => self.patches.eg += 1,
-            PatchKind::CatmullClark => self.patches.catmull_clark += 1,
-        }
-        self.patches.total += 1;
-        let level = p.level as usize;
-        if self.levels.len() <= level {
-            self.levels.resize(level + 1, 0);
-        }
-        self.levels[level] += 1;
-        self.inner.patch(p);
-    }
-    fn cap(&mut self, c: &CapRecord<R>) {
-        self.finite &= c.limit.is_finite();
-        self.rings = Some(match self.rings {
-            None => [c.rings; 2],
-            Some([lo, hi]) => [lo.min(c.rings), hi.max(c.rings)],
-        });
-        let (scheme, valence) = (c.scheme.id(), c.valence);
-        match self
-            .caps
-            .iter_mut()
-            .find(|k| k.scheme == scheme && k.valence == valence)
-        {
-            Some(k) => k.count += 1,
-            None => self.caps.push(CapCount {
-                scheme,
-                valence,
-                count: 1,
-            }),
-        }
-        self.inner.cap(c);
-    }
 }
 
 /// Validates, analyses and evaluates `mesh` in `R` into `sink`, refusing a
@@ -601,22 +503,30 @@ pub fn run_scheme<R: Scalar>(
     let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
     let tolerance = options.tolerance.absolute(diagonal(mesh));
     evaluator.set_hole_tolerance(tolerance);
-    let mut tally = Tally::new(sink);
-    crate::threads::evaluate(options.threads, &mut evaluator, &positions, &mut tally)
-        .map_err(eval_err)?;
+    let mut stats = SurfaceStats::new();
+    crate::threads::evaluate(
+        options.threads,
+        &mut evaluator,
+        &positions,
+        &mut Tee(&mut stats, &mut *sink),
+    )
+    .map_err(eval_err)?;
     let evaluation = start.elapsed();
 
-    if !tally.finite {
+    if let Some(e) = stats.refused() {
+        return Err(CliError::out_of_memory(name, e.bytes));
+    }
+    if !stats.finite {
         return Err(CliError::NonFiniteResult {
             source: name.to_string(),
         });
     }
-    if tally.patches.total == 0 {
+    if stats.patches.total == 0 {
         return Err(CliError::EmptySurface {
             source: name.to_string(),
         });
     }
-    let mut caps = tally.caps;
+    let mut caps: Vec<CapCount> = stats.caps.iter().map(CapCount::from).collect();
     caps.sort_by_key(|k| (k.scheme, k.valence));
     let reasons = |list: &[capdiv_mesh::plan::UncoveredFace]| {
         list.iter()
@@ -627,7 +537,7 @@ pub fn run_scheme<R: Scalar>(
             })
             .collect()
     };
-    let mut levels = tally.levels;
+    let mut levels = stats.levels;
     if levels.is_empty() {
         levels.push(0);
     }
@@ -639,7 +549,7 @@ pub fn run_scheme<R: Scalar>(
         },
         depth: options.depth,
         tolerance,
-        rings: tally.rings,
+        rings: stats.rings,
         precision: options.precision.to_string(),
         scheme: if catmull_clark {
             SurfaceScheme::CatmullClark
@@ -648,7 +558,7 @@ pub fn run_scheme<R: Scalar>(
         }
         .name(),
         tags: TagSummary::of(&mesh.tags),
-        patches: tally.patches,
+        patches: stats.patches.into(),
         caps,
         refinement_steps: plan.steps.len(),
         needed_refinement: reasons(&plan.needed_refinement),
@@ -672,15 +582,6 @@ pub fn run_scheme<R: Scalar>(
     };
     let facevarying = FaceVarying::new(mesh, &plan).map_err(mesh_err)?;
     Ok((summary, facevarying))
-}
-
-/// All control points of a patch (either degree).
-fn geometry_points<R: Scalar>(p: &PatchRecord<R>) -> Box<dyn Iterator<Item = Point3<R>> + '_> {
-    use capdiv_mesh::tessellate::PatchGeometry;
-    match &p.geometry {
-        PatchGeometry::Cubic(t) => Box::new(t.points.iter().flatten().copied()),
-        PatchGeometry::Quartic(t) => Box::new(t.points.iter().flatten().copied()),
-    }
 }
 
 /// `{"patches", "caps", "summary"}`.
@@ -922,7 +823,7 @@ pub struct InputSummary {
     pub closed: bool,
 }
 
-/// Patches per kind.
+/// Patches per kind, as printed ([`capdiv_mesh::sinks::PatchCounts`]).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct PatchCounts {
     /// B-spline patches of regular faces.
@@ -938,7 +839,8 @@ pub struct PatchCounts {
     pub total: usize,
 }
 
-/// Caps of one scheme and valence.
+/// Caps of one scheme and valence, as printed
+/// ([`capdiv_mesh::sinks::CapCount`]).
 #[derive(Clone, Debug, Serialize)]
 pub struct CapCount {
     /// Scheme id.
@@ -947,6 +849,28 @@ pub struct CapCount {
     pub valence: usize,
     /// How many.
     pub count: usize,
+}
+
+impl From<capdiv_mesh::sinks::PatchCounts> for PatchCounts {
+    fn from(p: capdiv_mesh::sinks::PatchCounts) -> Self {
+        PatchCounts {
+            regular: p.regular,
+            c2ps: p.c2ps,
+            eg: p.eg,
+            catmull_clark: p.catmull_clark,
+            total: p.total,
+        }
+    }
+}
+
+impl From<&capdiv_mesh::sinks::CapCount> for CapCount {
+    fn from(c: &capdiv_mesh::sinks::CapCount) -> Self {
+        CapCount {
+            scheme: c.scheme.id(),
+            valence: c.valence,
+            count: c.count,
+        }
+    }
 }
 
 /// An input face with a reason.

@@ -117,25 +117,10 @@ pub fn bspline_basis(t: f64) -> [f64; 4] {
 // Surface collection and evaluation helpers (mesh/tests/surface_*.rs).
 
 use capdiv_mesh::tessellate::PatchGeometry;
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology,
-};
+use capdiv_mesh::{Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, Topology};
 
 /// A sink that keeps every patch and cap.
-#[derive(Default)]
-pub struct Collect<R> {
-    pub patches: Vec<PatchRecord<R>>,
-    pub caps: Vec<CapRecord<R>>,
-}
-
-impl<R: Clone> SurfaceSink<R> for Collect<R> {
-    fn patch(&mut self, p: &PatchRecord<R>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<R>) {
-        self.caps.push(c.clone());
-    }
-}
+pub type Collect<R> = capdiv_mesh::sinks::CollectSurface<R>;
 
 /// Plan (at `depth`) and evaluate a mesh in f64.
 pub fn surface(mesh: &MeshInput, depth: u32) -> (SurfacePlan<'static>, Collect<f64>) {
