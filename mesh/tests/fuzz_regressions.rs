@@ -8,21 +8,9 @@
 //! open.
 
 use capdiv_mesh::obj::parse_obj;
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, BadEdge};
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Topology,
-};
-
-struct Collect {
-    patches: Vec<PatchRecord<f64>>,
-}
-
-impl SurfaceSink<f64> for Collect {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, _: &CapRecord<f64>) {}
-}
+use capdiv_mesh::{Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
 
 /// The fuzz target's generic positions (a hash of the index in [-1, 1]³).
 fn generic(n: usize) -> Vec<[f64; 3]> {
@@ -59,9 +47,7 @@ fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge>
     let mut closed = Ok(());
     for positions in [mesh.vertices.clone(), generic(mesh.vertices.len())] {
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-        let mut sink = Collect {
-            patches: Vec::new(),
-        };
+        let mut sink = CollectSurface::new();
         ev.evaluate(&positions, &mut sink).expect("evaluates");
         let size = positions
             .iter()

@@ -6,25 +6,11 @@
 
 use capdiv::Point3;
 use capdiv_mesh::samples;
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::PatchGeometry;
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
-};
+use capdiv_mesh::{Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan};
 
-#[derive(Default)]
-struct Collect {
-    patches: Vec<PatchRecord<f64>>,
-    caps: Vec<CapRecord<f64>>,
-}
-
-impl SurfaceSink<f64> for Collect {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.caps.push(c.clone());
-    }
-}
+type Collect = CollectSurface<f64>;
 
 fn evaluate(mesh: &MeshInput, depth: u32, tolerance: Option<f64>) -> Collect {
     let plan = SurfacePlan::for_mesh(

@@ -6,6 +6,7 @@
 //! holds a front whose size does not grow with the depth.
 
 use capdiv_mesh::samples;
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter, StreamSummary,
     StreamTessellator, TessellatingSink, Tessellation,
@@ -15,17 +16,7 @@ use capdiv_mesh::{
 };
 
 /// Every patch and cap, in the evaluator's order.
-#[derive(Default)]
-struct Collect {
-    patches: Vec<PatchRecord<f64>>,
-}
-
-impl SurfaceSink<f64> for Collect {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.patches.push(p.clone());
-    }
-    fn cap(&mut self, _: &CapRecord<f64>) {}
-}
+type Collect = CollectSurface<f64>;
 
 fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
     SurfacePlan::for_mesh(
