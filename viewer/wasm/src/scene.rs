@@ -8,12 +8,13 @@ use crate::paint::{self, Mode, Paint, View};
 use crate::tess::{Surface, Tessellator};
 use capdiv::Point3;
 use capdiv_mesh::shade::HighlightLines;
+use capdiv_mesh::sinks::SurfaceStats;
 use capdiv_mesh::tessellate::weld::representatives;
 use capdiv_mesh::tessellate::{write_obj, write_point};
 use capdiv_mesh::tessellate::{Face, Tessellation};
 use capdiv_mesh::{
     BoundaryInterpolation, CreaseMethod, EvalBuffers, Evaluator, MeshInput, PlanOptions,
-    SurfacePlan, Topology, TriangleSubdivision,
+    SurfacePlan, SurfaceSink, Topology, TriangleSubdivision,
 };
 use std::fmt::Write;
 
@@ -476,16 +477,15 @@ impl Scene {
     pub fn summary(&self) -> String {
         let plan = &self.analysis.plan;
         let kinds = self.tess.kinds;
-        let mut caps: Vec<(&str, usize, usize)> = Vec::new();
+        let mut stats = SurfaceStats::new();
         for c in &self.tess.caps {
-            match caps
-                .iter_mut()
-                .find(|k| k.0 == c.scheme.id() && k.1 == c.valence)
-            {
-                Some(k) => k.2 += 1,
-                None => caps.push((c.scheme.id(), c.valence, 1)),
-            }
+            stats.cap(c);
         }
+        let mut caps: Vec<(&str, usize, usize)> = stats
+            .caps
+            .iter()
+            .map(|k| (k.scheme.id(), k.valence, k.count))
+            .collect();
         caps.sort();
         let mut s = String::new();
         let _ = write!(
@@ -497,10 +497,10 @@ impl Scene {
             self.mesh.faces.len(),
             plan.steps.len(),
             plan.uncovered.len(),
-            kinds[0],
-            kinds[1],
-            kinds[2],
-            kinds[3]
+            kinds.regular,
+            kinds.c2ps,
+            kinds.eg,
+            kinds.catmull_clark
         );
         for (i, (scheme, valence, count)) in caps.iter().enumerate() {
             let sep = if i > 0 { "," } else { "" };

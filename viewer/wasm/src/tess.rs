@@ -23,7 +23,8 @@
 //! [`HOLE`] (the page marks them in the curvature maps: the hole is not part
 //! of any patch).
 
-use capdiv_mesh::evaluate::{CapRecord, PatchKind, PatchRecord, SurfaceSink};
+use capdiv_mesh::evaluate::{CapRecord, PatchRecord, SurfaceSink};
+use capdiv_mesh::sinks::PatchCounts;
 use capdiv_mesh::tessellate::layout::{PatchLayout, SampleAt, Sampling};
 use capdiv_mesh::tessellate::{Face, PatchGeometry};
 
@@ -271,8 +272,8 @@ pub struct Tessellator {
     pub surface: Surface,
     /// Vertices rewritten by the last evaluation: `dirty.0..dirty.1`.
     pub dirty: (usize, usize),
-    /// Patches per kind (regular, C²PS, EG, Catmull-Clark) of the layout.
-    pub kinds: [usize; 4],
+    /// Patches per kind of the layout.
+    pub kinds: PatchCounts,
     /// The caps of the last evaluation.
     pub caps: Vec<CapRecord<f64>>,
 }
@@ -292,7 +293,7 @@ impl Tessellator {
         if self.rebuild {
             self.slots.clear();
             self.surface.clear();
-            self.kinds = [0; 4];
+            self.kinds = PatchCounts::default();
         }
         self.dirty = (usize::MAX, 0);
     }
@@ -329,12 +330,7 @@ impl Tessellator {
         self.vertices.write(p, first, &mut self.surface);
         self.vertices
             .triangles(first as u32, &mut self.surface.indices);
-        self.kinds[match p.kind {
-            PatchKind::Regular => 0,
-            PatchKind::C2ps => 1,
-            PatchKind::Eg => 2,
-            PatchKind::CatmullClark => 3,
-        }] += 1;
+        self.kinds.add(p.kind);
         self.slots.push(Slot {
             geometry: p.geometry,
             level: p.level,
@@ -424,6 +420,7 @@ pub fn tessellate(patches: &[PatchRecord<f64>], base: u32, grid: usize, out: &mu
 mod tests {
     use super::*;
     use capdiv::{Point3, TensorPatch};
+    use capdiv_mesh::PatchKind;
 
     /// The bicubic Bézier patch of `z = x² + y²` over `[0,1]²`, exact
     /// (degree elevation of the quadratic: `z` control values
