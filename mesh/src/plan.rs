@@ -330,6 +330,19 @@ struct Pass {
 }
 
 impl<'t> SurfacePlan<'t> {
+    /// The [`Self::fallbacks`] at vertices of the input mesh: a whole-mesh
+    /// step numbers the vertex point of old vertex `v` as `v`
+    /// ([`crate::global_step`]), so the analysed level's vertices below
+    /// [`Self::input_vertices`] are the input's own; the others are points
+    /// the steps made.
+    pub fn input_fallbacks(&self) -> impl Iterator<Item = (u32, Reason)> + '_ {
+        let input = self.input_vertices;
+        self.fallbacks
+            .iter()
+            .copied()
+            .filter(move |&(v, _)| (v as usize) < input)
+    }
+
     /// The number of patches [`crate::Evaluator::evaluate`] hands on,
     /// known before any is made: one per regular face, `3n` per ring of an
     /// EG or Catmull-Clark cap of valence `n`, and `2·n·2^m` at level

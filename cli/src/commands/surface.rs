@@ -566,10 +566,8 @@ pub fn run_scheme<R: Scalar>(
         patches_per_level: levels,
         last_holes: plan.last_holes.len(),
         fallbacks: plan
-            .fallbacks
-            .iter()
-            .filter(|(v, _)| (*v as usize) < plan.input_vertices)
-            .map(|&(vertex, r)| Fallback {
+            .input_fallbacks()
+            .map(|(vertex, r)| Fallback {
                 vertex: vertex + 1,
                 reason: r.id(),
                 description: r.describe(),
