@@ -27,7 +27,7 @@ use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, HeapStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::sinks::CollectSurface;
-use capdiv_mesh::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
+use capdiv_mesh::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
 use capdiv_mesh::{Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan};
 
 /// One patch of a [`Shape`].
@@ -46,18 +46,16 @@ pub struct ShapePatch {
 
 impl ShapePatch {
     /// A ring patch (or, with `ring` false, an outer-region patch) of
-    /// `level` whose edges `inner` face the cap's centre
-    /// ([`ring_inner_edges`]): finer on every ring but the last, whose
-    /// `inner` edges border the hole closed to `hole_point`.
+    /// `level` with its `(finer, hole)` edges ([`ring_edge_flags`]), the
+    /// hole closed to `hole_point`.
     fn ring(
         kind: PatchKind,
         geometry: PatchGeometry<f64>,
         level: u32,
         ring: bool,
-        (inner, last): (u8, bool),
+        (finer, hole): (u8, u8),
         hole_point: [f64; 3],
     ) -> Self {
-        let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
         ShapePatch {
             patch: PatchRecord {
                 level,
@@ -248,7 +246,7 @@ impl PolarJob<'_> {
                     PatchGeometry::Cubic(p),
                     0,
                     false,
-                    (0, false),
+                    (0, 0),
                     hole_point,
                 )
             })
@@ -257,13 +255,13 @@ impl PolarJob<'_> {
             if net.link_count() >= 5 {
                 let cols = net.valence();
                 for (k, p) in net.ring_patches().enumerate() {
-                    let inner = ring_inner_edges(RingLayout::Polar, k, 2 * cols);
+                    let last = level == self.depth;
                     patches.push(ShapePatch::ring(
                         PatchKind::C2ps,
                         PatchGeometry::Cubic(p),
                         level,
                         true,
-                        (inner, level == self.depth),
+                        ring_edge_flags(RingLayout::Polar, k, 2 * cols, last),
                         hole_point,
                     ));
                 }
@@ -304,13 +302,12 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     for level in 1..=depth {
         sub.step().map_err(kernel)?;
         for (k, p) in sub.ring_patches().enumerate() {
-            let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
             patches.push(ShapePatch::ring(
                 PatchKind::Eg,
                 PatchGeometry::Quartic(p),
                 level,
                 true,
-                (inner, level == depth),
+                ring_edge_flags(RingLayout::Sectors, k, 0, level == depth),
                 hole_point,
             ));
         }
@@ -341,13 +338,12 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
     for level in 1..=depth {
         cap.step().map_err(kernel)?;
         for (k, p) in cap.ring_patches().enumerate() {
-            let inner = ring_inner_edges(RingLayout::Sectors, k, 0);
             patches.push(ShapePatch::ring(
                 PatchKind::CatmullClark,
                 PatchGeometry::Cubic(p),
                 level,
                 true,
-                (inner, level == depth),
+                ring_edge_flags(RingLayout::Sectors, k, 0, level == depth),
                 hole_point,
             ));
         }

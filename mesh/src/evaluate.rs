@@ -17,7 +17,7 @@ use crate::facevarying::PatchUv;
 use crate::hole;
 use crate::mem;
 use crate::plan::{ExtraordinaryCapPlan, PolarPlan, Scheme, SurfacePlan, Unit};
-use crate::tessellate::{ring_inner_edges, PatchGeometry, RingLayout};
+use crate::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
@@ -666,8 +666,8 @@ impl<R: Real> Scratch<R> {
                         ((c % per) as f64) / per as f64,
                         ((c % per) + 1) as f64 / per as f64,
                     );
-                    let inner = ring_inner_edges(RingLayout::Polar, span * cols + c, 2 * cols);
-                    let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
+                    let (finer, hole) =
+                        ring_edge_flags(RingLayout::Polar, span * cols + c, 2 * cols, last);
                     let chart = if r1 <= 1.0 || p.quads.is_empty() {
                         FaceChart {
                             face: tri,
@@ -756,8 +756,7 @@ impl<R: Real> Scratch<R> {
                 .copied()
                 .unwrap_or(FaceChart::input(0));
             let rect = [dom.x0, dom.x0 + dom.size, dom.y0, dom.y0 + dom.size];
-            let inner = ring_inner_edges(RingLayout::Sectors, k, 3 * n);
-            let (finer, hole) = if last { (0, inner) } else { (inner, 0) };
+            let (finer, hole) = ring_edge_flags(RingLayout::Sectors, k, 3 * n, last);
             let rec = match geometry {
                 PatchGeometry::Cubic(p) => record(
                     kind,

@@ -108,6 +108,33 @@ pub fn ring_inner_edges(layout: RingLayout, j: usize, len: usize) -> u8 {
     }
 }
 
+/// `(finer, hole)` ([`PatchRecord::finer`], [`PatchRecord::hole`]) of ring
+/// patch `j` of a cap's rings: its inner edges ([`ring_inner_edges`]) meet
+/// the next ring's half-size patches on every ring but the `last`, and
+/// border the last ring's hole there.
+///
+/// ```
+/// use capdiv_mesh::tessellate::{edge_bit, ring_edge_flags, RingLayout, EDGE_U0, EDGE_V0};
+///
+/// // A C²PS ring of 2·6 patches: span 0 (patches 0..6) faces the pole.
+/// let u0 = edge_bit(EDGE_U0);
+/// assert_eq!(ring_edge_flags(RingLayout::Polar, 2, 12, false), (u0, 0));
+/// assert_eq!(ring_edge_flags(RingLayout::Polar, 2, 12, true), (0, u0));
+/// assert_eq!(ring_edge_flags(RingLayout::Polar, 8, 12, true), (0, 0));
+/// // EG / Catmull-Clark: piece 1 of a sector faces the centre along v = 0,
+/// // piece 2 not at all.
+/// assert_eq!(ring_edge_flags(RingLayout::Sectors, 4, 9, true), (0, edge_bit(EDGE_V0)));
+/// assert_eq!(ring_edge_flags(RingLayout::Sectors, 5, 9, false), (0, 0));
+/// ```
+pub fn ring_edge_flags(layout: RingLayout, j: usize, len: usize, last: bool) -> (u8, u8) {
+    let inner = ring_inner_edges(layout, j, len);
+    if last {
+        (0, inner)
+    } else {
+        (inner, 0)
+    }
+}
+
 /// The geometry of one patch to tessellate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PatchGeometry<R> {
