@@ -5,7 +5,8 @@
 //! storage and the net unchanged.
 
 use capdiv::{
-    BicubicPatch, Error, FirstStep, Point3, PolarNet, PolarNetBuf, PoleJet, Real, SliceStorage,
+    BicubicPatch, Error, FirstStep, NetStorage, Point3, PolarNet, PolarNetBuf, PolarNetInner,
+    PoleJet, Real, SliceStorage,
 };
 use proptest::prelude::*;
 
@@ -34,36 +35,8 @@ fn root_bits<R: Real>(roots: &[[R; 2]]) -> Vec<u64> {
         .collect()
 }
 
-/// Everything observable about a `PolarNet`, as bits.
-fn observe<R: Real, const C: usize>(net: &PolarNet<R, C>) -> Vec<Vec<u64>> {
-    let mut out = vec![
-        vec![
-            net.valence() as u64,
-            net.base_valence() as u64,
-            net.level() as u64,
-            net.link_count() as u64,
-            net.ring_len() as u64,
-        ],
-        bits(&[net.pole()]),
-        root_bits(net.roots()),
-        bits(&PoleJet::of(net).p),
-    ];
-    for i in 0..=6 {
-        out.push(net.link(i).map_or(vec![u64::MAX], bits));
-    }
-    let p = net.ring_patches();
-    assert_eq!(p.len(), net.ring_len());
-    out.push(patch_bits(p));
-    out.push(err_bits(net.ring_patch(2 * net.valence())));
-    out.push(err_bits(net.ring_patch(usize::MAX)));
-    out.push(err_bits(
-        net.ring_patch((2 * net.valence()).saturating_sub(1)),
-    ));
-    out
-}
-
-/// The same for a `PolarNetBuf`.
-fn observe_buf<R: Real>(net: &PolarNetBuf<'_, R>) -> Vec<Vec<u64>> {
+/// Everything observable about a polar net over any storage, as bits.
+fn observe<R: Real, S: NetStorage<R>>(net: &PolarNetInner<R, S>) -> Vec<Vec<u64>> {
     let mut out = vec![
         vec![
             net.valence() as u64,
@@ -156,17 +129,17 @@ fn compare<R: Real>(
     )
     .unwrap();
     prop_assert_eq!(net.capacity(), cap);
-    prop_assert_eq!(observe_buf(&net), observe(&*reference));
+    prop_assert_eq!(observe(&net), observe(&*reference));
     for &c2ps in ops {
         if c2ps {
             prop_assert_eq!(net.step(first), reference.step(first));
         } else {
             prop_assert_eq!(net.rts_step(), reference.rts_step());
         }
-        prop_assert_eq!(observe_buf(&net), observe(&*reference));
+        prop_assert_eq!(observe(&net), observe(&*reference));
     }
     // The storage is full: one more step fails and changes nothing.
-    let before = observe_buf(&net);
+    let before = observe(&net);
     prop_assert_eq!(
         net.step(first),
         Err(Error::CapacityExceeded {
@@ -174,11 +147,11 @@ fn compare<R: Real>(
             capacity: cap
         })
     );
-    prop_assert_eq!(observe_buf(&net), before);
+    prop_assert_eq!(observe(&net), before);
     // `reset` reuses the storage: the level-0 net again.
     net.reset(pole, &links).unwrap();
     reference.reset(pole, &links).unwrap();
-    prop_assert_eq!(observe_buf(&net), observe(&*reference));
+    prop_assert_eq!(observe(&net), observe(&*reference));
     Ok(())
 }
 
@@ -265,12 +238,12 @@ proptest! {
         let (small_pole, small_links) = config(3, 4, &noise, seed ^ 1);
         let mut net = PolarNetBuf::new_in(small_pole, &small_links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
         net.step(FirstStep::Plain).unwrap();
-        let before = observe_buf(&net);
+        let before = observe(&net);
         prop_assert_eq!(
             net.reset(pole, &links),
             Err(Error::CapacityExceeded { needed: n, capacity: cap })
         );
-        prop_assert_eq!(observe_buf(&net), before);
+        prop_assert_eq!(observe(&net), before);
         let (ls2, rs2) = net.into_storage().into_parts();
         let (ls2, rs2) = (ls2.to_vec(), rs2.to_vec());
         let mut net = PolarNetBuf::new_in(small_pole, &small_links, SliceStorage::new(&mut ls, &mut rs)).unwrap();
@@ -363,13 +336,13 @@ fn empty_net_behaves_like_polar_net_empty() {
     let mut net = PolarNetBuf::empty_in(SliceStorage::new(&mut ls, &mut rs));
     let mut reference: PolarNet<f32, 8> = PolarNet::empty();
     assert_eq!(net.capacity(), 8);
-    assert_eq!(observe_buf(&net), observe(&reference));
+    assert_eq!(observe(&net), observe(&reference));
     assert_eq!(
         net.step(FirstStep::Uniform),
         reference.step(FirstStep::Uniform)
     );
     assert_eq!(net.rts_step(), reference.rts_step());
-    assert_eq!(observe_buf(&net), observe(&reference));
+    assert_eq!(observe(&net), observe(&reference));
     assert_eq!(
         PoleJet::of(&net).geometry(),
         PoleJet::of(&reference).geometry()
