@@ -4,6 +4,11 @@
 //! C²PS are plain CC (docs/math/c2ps.md §2: uniform bi-3 refinement), so they come out of
 //! the CC rules unchanged.
 //!
+//! The step of a mesh with tags ([`crate::tagged_step`]) is this step with
+//! OpenSubdiv's rows in place of the Catmull-Clark rules below
+//! (`try_step_with_rows`): the numbering, the C²PS rows and the faces are
+//! this module's.
+//!
 //! Topology is computed once; every refined vertex is a fixed linear
 //! combination of old vertices (a [`StencilTable`] row), so positions are
 //! re-evaluated cheaply when the input vertices move.
@@ -74,7 +79,7 @@ pub struct Refined {
 
 /// A stencil row under construction: `(old vertex, weight)`, one entry per
 /// vertex.
-type Row = Vec<(u32, f64)>;
+pub(crate) type Row = Vec<(u32, f64)>;
 
 /// Adds `w · old vertex i` to `row`.
 fn add(row: &mut Row, i: u32, w: f64) {
@@ -124,31 +129,71 @@ pub fn try_global_step(
     charts: &[FaceChart],
     poles: &[PolarSeed],
 ) -> Result<Refined, OutOfMemory> {
+    let numbering = StepNumbering::new(topo)?;
+    let rows = catmull_clark_rows(topo, &numbering)?;
+    try_step_with_rows(topo, charts, poles, &numbering, rows)
+}
+
+/// The numbering of a step's refined vertices (the module doc's): vertex
+/// points first, then face points, then edge points, edges numbered as
+/// first met along the half-edges.
+pub(crate) struct StepNumbering {
+    /// Per half-edge: its undirected edge.
+    edge: Vec<u32>,
+    /// Per edge: the half-edge that first met it.
+    edge_he: Vec<u32>,
+    /// Vertices and faces of the old mesh.
+    nv: usize,
+    nf: usize,
+}
+
+impl StepNumbering {
+    /// The numbering of one step of `topo`.
+    pub(crate) fn new(topo: &Topology) -> Result<Self, OutOfMemory> {
+        let nh = topo.num_half_edges();
+        let mut edge = mem::filled(nh, NONE)?;
+        // At most one edge per half-edge.
+        let mut edge_he: Vec<u32> = mem::with_capacity(nh)?;
+        for h in 0..nh {
+            if edge[h] == NONE {
+                let e = edge_he.len() as u32;
+                edge[h] = e;
+                let t = topo.twin(h as u32);
+                if t != NONE {
+                    edge[t as usize] = e;
+                }
+                edge_he.push(h as u32);
+            }
+        }
+        Ok(StepNumbering {
+            edge,
+            edge_he,
+            nv: topo.num_vertices(),
+            nf: topo.num_faces(),
+        })
+    }
+
+    /// Refined vertices: `V + F + E`.
+    pub(crate) fn len(&self) -> usize {
+        self.nv + self.nf + self.edge_he.len()
+    }
+
+    /// The face point of old face `f`.
+    pub(crate) fn face_point(&self, f: usize) -> u32 {
+        (self.nv + f) as u32
+    }
+
+    /// The edge point of the edge of half-edge `h`.
+    pub(crate) fn edge_point(&self, h: u32) -> u32 {
+        (self.nv + self.nf) as u32 + self.edge[h as usize]
+    }
+}
+
+/// The Catmull-Clark rows of every refined vertex (the module doc's rules),
+/// in the refined numbering.
+fn catmull_clark_rows(topo: &Topology, numbering: &StepNumbering) -> Result<Vec<Row>, OutOfMemory> {
     let nv = topo.num_vertices();
     let nf = topo.num_faces();
-    let nh = topo.num_half_edges();
-    assert_eq!(charts.len(), nf, "global_step: one chart per face");
-
-    // Undirected edges, in the order first met along the half-edges.
-    let mut edge = mem::filled(nh, NONE)?;
-    // At most one edge per half-edge.
-    let mut edge_he: Vec<u32> = mem::with_capacity(nh)?;
-    for h in 0..nh {
-        if edge[h] == NONE {
-            let e = edge_he.len() as u32;
-            edge[h] = e;
-            let t = topo.twin(h as u32);
-            if t != NONE {
-                edge[t as usize] = e;
-            }
-            edge_he.push(h as u32);
-        }
-    }
-    let ne = edge_he.len();
-    let fp_base = nv as u32;
-    let ep_base = (nv + nf) as u32;
-    let total = nv + nf + ne;
-
     // Face points.
     let face_rows: Vec<Row> = mem::collect((0..nf).map(|f| {
         let vs = topo.face(f);
@@ -156,7 +201,7 @@ pub fn try_global_step(
         vs.iter().map(|&v| (v, w)).collect()
     }))?;
 
-    let mut rows: Vec<Row> = mem::with_capacity(total)?;
+    let mut rows: Vec<Row> = mem::with_capacity(numbering.len())?;
     // Vertex points.
     for v in 0..nv {
         let mut row = Row::new();
@@ -185,7 +230,7 @@ pub fn try_global_step(
     }
     rows.extend(face_rows.iter().cloned());
     // Edge points.
-    for &h in &edge_he {
+    for &h in &numbering.edge_he {
         let mut row = Row::new();
         let t = topo.twin(h);
         let (v, w) = (topo.origin(h), topo.dest(h));
@@ -200,102 +245,37 @@ pub fn try_global_step(
         }
         rows.push(row);
     }
+    Ok(rows)
+}
 
-    // C²PS at the seeds. Per face: the corner holding a seed's pole (or NONE).
+/// One refinement step of `topo` whose refined vertices outside the seeds'
+/// C²PS points are `rows` (one per refined vertex, in `numbering`): the
+/// seeds' pole, link 1 and link 2 rows replaced by C²PS's, the faces (two
+/// triangles at each seed's pole corners), their charts and parents.
+///
+/// # Panics
+/// As [`global_step`], on a caller's logic error.
+pub(crate) fn try_step_with_rows(
+    topo: &Topology,
+    charts: &[FaceChart],
+    poles: &[PolarSeed],
+    numbering: &StepNumbering,
+    mut rows: Vec<Row>,
+) -> Result<Refined, OutOfMemory> {
+    let nf = topo.num_faces();
+    let nh = topo.num_half_edges();
+    assert_eq!(charts.len(), nf, "global_step: one chart per face");
+    assert_eq!(
+        rows.len(),
+        numbering.len(),
+        "global_step: one row per vertex"
+    );
+    // Per face: the corner holding a seed's pole (or NONE).
     let mut pole_corner = mem::filled(nf, NONE)?;
     let mut new_poles = mem::with_capacity(poles.len())?;
     for seed in poles {
-        let n = seed.link1.len();
-        assert!(
-            n >= 3 && seed.link2.len() == n && seed.triangles.len() == n && seed.quads.len() == n,
-            "global_step: PolarSeed of pole {} has inconsistent lengths",
-            seed.pole
-        );
-        // h[j]: the half-edge pole → link1[j] in triangles[j].
-        let spokes: Vec<u32> = (0..n)
-            .map(|j| {
-                let f = seed.triangles[j] as usize;
-                let vs = topo.face(f);
-                let k = vs.iter().position(|&x| x == seed.pole);
-                let ok = vs.len() == 3
-                    && k.is_some_and(|k| {
-                        vs[(k + 1) % 3] == seed.link1[j]
-                            && vs[(k + 2) % 3] == seed.link1[(j + 1) % n]
-                    });
-                assert!(
-                    ok,
-                    "global_step: face {f} is not triangle {j} of pole {}",
-                    seed.pole
-                );
-                let k = k.unwrap_or(0);
-                pole_corner[f] = k as u32;
-                topo.face_half_edge(f, k)
-            })
-            .collect();
-        for j in 0..n {
-            let f = seed.quads[j] as usize;
-            let vs = topo.face(f);
-            let want = [
-                seed.link1[(j + 1) % n],
-                seed.link1[j],
-                seed.link2[j],
-                seed.link2[(j + 1) % n],
-            ];
-            let ok = vs.len() == 4 && (0..4).any(|s| (0..4).all(|i| vs[(s + i) % 4] == want[i]));
-            assert!(
-                ok,
-                "global_step: face {f} is not quad {j} of pole {}",
-                seed.pole
-            );
-        }
-        let (q00, q1, q2) = (seed.pole, &seed.link1, &seed.link2);
-        let nf64 = n as f64;
-        // (1): new pole = 3/4 q00 + 1/4 A.
-        let mut row = vec![(q00, 0.75)];
-        for &v in q1 {
-            add(&mut row, v, 0.25 / nf64);
-        }
-        rows[q00 as usize] = row;
-        new_poles.push(q00);
-        // Periodic cubic refinement of a link as weights: ũ[j'].
-        let tilde = |u: &[u32], jp: usize, w: f64, row: &mut Row| {
-            let j = jp / 2;
-            if jp.is_multiple_of(2) {
-                add(row, u[(j + n - 1) % n], w / 8.0);
-                add(row, u[j], 6.0 * w / 8.0);
-                add(row, u[(j + 1) % n], w / 8.0);
-            } else {
-                add(row, u[j], w / 2.0);
-                add(row, u[(j + 1) % n], w / 2.0);
-            }
-        };
-        for jp in 0..2 * n {
-            let j = jp / 2;
-            let h = spokes[j];
-            // (2): new link 1.
-            let tau = jp as f64 / (2.0 * nf64);
-            let mut row = vec![(q00, 0.5)];
-            for (hh, &v) in q1.iter().enumerate() {
-                let d = hh as f64 / nf64 - tau;
-                add(&mut row, v, (0.5 + c(d) + 0.5 * c(2.0 * d)) / nf64);
-            }
-            let id = if jp.is_multiple_of(2) {
-                ep_base + edge[h as usize]
-            } else {
-                fp_base + seed.triangles[j]
-            };
-            rows[id as usize] = row;
-            // First-step variant: new link 2 = (q00 + 6 q̃1 + q̃2)/8.
-            let mut row = vec![(q00, 0.125)];
-            tilde(q1, jp, 0.75, &mut row);
-            tilde(q2, jp, 0.125, &mut row);
-            let id = if jp.is_multiple_of(2) {
-                q1[j]
-            } else {
-                ep_base + edge[topo.next(h) as usize]
-            };
-            rows[id as usize] = row;
-        }
+        polar_rows(topo, numbering, seed, &mut rows, &mut pole_corner);
+        new_poles.push(seed.pole);
     }
 
     let mut stencils = StencilTable::new();
@@ -311,13 +291,13 @@ pub fn try_global_step(
     let mut parent = mem::with_capacity(out_faces)?;
     for f in 0..nf {
         let k = topo.face_len(f);
-        let fp = fp_base + f as u32;
+        let fp = numbering.face_point(f);
         let chart = charts[f];
         for corner in 0..k {
             let h = topo.face_half_edge(f, corner);
             let vp = topo.origin(h);
-            let e_next = ep_base + edge[h as usize];
-            let e_prev = ep_base + edge[topo.prev(h) as usize];
+            let e_next = numbering.edge_point(h);
+            let e_prev = numbering.edge_point(topo.prev(h));
             if pole_corner[f] == corner as u32 {
                 faces.push(vec![vp, e_next, fp]);
                 faces.push(vec![vp, fp, e_prev]);
@@ -334,13 +314,117 @@ pub fn try_global_step(
     }
 
     Ok(Refined {
-        num_vertices: total,
+        num_vertices: numbering.len(),
         faces,
         stencils,
         charts: out_charts,
         parent,
         poles: new_poles,
     })
+}
+
+/// C²PS at one seed (docs/math/c2ps.md §2, first-step variant "Uniform"):
+/// the rows of its new pole, new link 1 and new link 2 in `rows`, and the
+/// corner of each of its triangles that holds the pole in `pole_corner`.
+///
+/// # Panics
+/// If the seed does not describe its faces as documented on [`PolarSeed`].
+fn polar_rows(
+    topo: &Topology,
+    numbering: &StepNumbering,
+    seed: &PolarSeed,
+    rows: &mut [Row],
+    pole_corner: &mut [u32],
+) {
+    let n = seed.link1.len();
+    assert!(
+        n >= 3 && seed.link2.len() == n && seed.triangles.len() == n && seed.quads.len() == n,
+        "global_step: PolarSeed of pole {} has inconsistent lengths",
+        seed.pole
+    );
+    // h[j]: the half-edge pole → link1[j] in triangles[j].
+    let spokes: Vec<u32> = (0..n)
+        .map(|j| {
+            let f = seed.triangles[j] as usize;
+            let vs = topo.face(f);
+            let k = vs.iter().position(|&x| x == seed.pole);
+            let ok = vs.len() == 3
+                && k.is_some_and(|k| {
+                    vs[(k + 1) % 3] == seed.link1[j] && vs[(k + 2) % 3] == seed.link1[(j + 1) % n]
+                });
+            assert!(
+                ok,
+                "global_step: face {f} is not triangle {j} of pole {}",
+                seed.pole
+            );
+            let k = k.unwrap_or(0);
+            pole_corner[f] = k as u32;
+            topo.face_half_edge(f, k)
+        })
+        .collect();
+    for j in 0..n {
+        let f = seed.quads[j] as usize;
+        let vs = topo.face(f);
+        let want = [
+            seed.link1[(j + 1) % n],
+            seed.link1[j],
+            seed.link2[j],
+            seed.link2[(j + 1) % n],
+        ];
+        let ok = vs.len() == 4 && (0..4).any(|s| (0..4).all(|i| vs[(s + i) % 4] == want[i]));
+        assert!(
+            ok,
+            "global_step: face {f} is not quad {j} of pole {}",
+            seed.pole
+        );
+    }
+    let (q00, q1, q2) = (seed.pole, &seed.link1, &seed.link2);
+    let nf64 = n as f64;
+    // (1): new pole = 3/4 q00 + 1/4 A.
+    let mut row = vec![(q00, 0.75)];
+    for &v in q1 {
+        add(&mut row, v, 0.25 / nf64);
+    }
+    rows[q00 as usize] = row;
+    // Periodic cubic refinement of a link as weights: ũ[j'].
+    let tilde = |u: &[u32], jp: usize, w: f64, row: &mut Row| {
+        let j = jp / 2;
+        if jp.is_multiple_of(2) {
+            add(row, u[(j + n - 1) % n], w / 8.0);
+            add(row, u[j], 6.0 * w / 8.0);
+            add(row, u[(j + 1) % n], w / 8.0);
+        } else {
+            add(row, u[j], w / 2.0);
+            add(row, u[(j + 1) % n], w / 2.0);
+        }
+    };
+    for jp in 0..2 * n {
+        let j = jp / 2;
+        let h = spokes[j];
+        // (2): new link 1.
+        let tau = jp as f64 / (2.0 * nf64);
+        let mut row = vec![(q00, 0.5)];
+        for (hh, &v) in q1.iter().enumerate() {
+            let d = hh as f64 / nf64 - tau;
+            add(&mut row, v, (0.5 + c(d) + 0.5 * c(2.0 * d)) / nf64);
+        }
+        let id = if jp.is_multiple_of(2) {
+            numbering.edge_point(h)
+        } else {
+            numbering.face_point(seed.triangles[j] as usize)
+        };
+        rows[id as usize] = row;
+        // First-step variant: new link 2 = (q00 + 6 q̃1 + q̃2)/8.
+        let mut row = vec![(q00, 0.125)];
+        tilde(q1, jp, 0.75, &mut row);
+        tilde(q2, jp, 0.125, &mut row);
+        let id = if jp.is_multiple_of(2) {
+            q1[j]
+        } else {
+            numbering.edge_point(topo.next(h))
+        };
+        rows[id as usize] = row;
+    }
 }
 
 #[cfg(test)]

@@ -84,6 +84,7 @@ pub mod samples;
 pub mod shade;
 pub mod sinks;
 pub mod stencil;
+pub mod tagged_step;
 pub mod tags;
 pub mod tessellate;
 pub mod topology;

@@ -16,12 +16,17 @@
 //!    regular: its c-net exists, docs/math/eg.md §1) is an EG cap for n = 3, 5 and
 //!    for n = 6..10 with a rule table, else a Catmull-Clark cap, over its n
 //!    faces;
-//! 4. in a mesh without tags, where a step refines no face that does not
-//!    need it — every face needs refinement, or a polar fan's C²PS
-//!    configuration is incomplete (links 1 and 2 are there, link 3 or the
-//!    rings' regularity is not) and one step completes it — the whole mesh
-//!    is refined once (Catmull-Clark, C²PS at poles) and analysed again — at
-//!    most [`MAX_STEPS`] times;
+//! 4. where a step refines no face that does not need it — a polar fan's
+//!    C²PS configuration is incomplete (links 1 and 2 are there, link 3 or
+//!    the rings' regularity is not), one step completes it and no tag
+//!    reaches its triangles and quads (nor the faces around their
+//!    vertices); or, in a mesh without tags, every face needs refinement —
+//!    the whole mesh is refined once and analysed again, at most
+//!    [`MAX_STEPS`] times: Catmull-Clark ([`crate::global_step`]), in a mesh
+//!    with tags with OpenSubdiv's rules ([`crate::tagged_step`]), and C²PS
+//!    at the poles of the fans no tag reaches (docs/adaptive.md, "Whole-mesh
+//!    steps"). A fan a tag reaches is Catmull-Clark: its pole falls back
+//!    for a feature, its triangles become quads in a step;
 //! 5. every face left is refined adaptively with OpenSubdiv's rules
 //!    ([`crate::adaptive`]): nothing is left uncovered. Where that
 //!    refinement separates an extraordinary point from every other feature
@@ -47,6 +52,7 @@ use crate::grid::{face_grid, interior_face_grid, GridPoint};
 use crate::input::MeshInput;
 use crate::mem;
 use crate::stencil::{Primvar, StencilTable};
+use crate::tagged_step::tagged_step;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
@@ -256,7 +262,8 @@ pub struct SurfacePlan<'t> {
     pub needed_refinement: Vec<UncoveredFace>,
     /// Vertices of the analysed level where a cap's configuration (a polar
     /// fan, an extraordinary point) is but no cap was made, and why; their
-    /// faces are Catmull-Clark by adaptive refinement.
+    /// faces are Catmull-Clark by adaptive refinement. The pole of a fan a
+    /// tag reached before a step keeps [`Reason::Feature`].
     pub fallbacks: Vec<(u32, Reason)>,
     /// Faces of the adaptive refinement left as the last hole around an
     /// irregular vertex (closed by a fan to its limit point): where each lies
@@ -377,7 +384,9 @@ impl<'t> SurfacePlan<'t> {
     /// analysed as by [`Self::new`]; with tags, or when it is not a
     /// consistently oriented manifold, caps and level-0 patches go only
     /// where no tag reaches them and every other face is refined adaptively
-    /// with OpenSubdiv's rules ([`crate::adaptive`]).
+    /// with OpenSubdiv's rules ([`crate::adaptive`]), after a whole-mesh
+    /// step with those rules where a polar fan no tag reaches needs one
+    /// (rule 4 of the module doc).
     ///
     /// # Example
     ///
@@ -415,7 +424,7 @@ impl<'t> SurfacePlan<'t> {
 
     fn build(
         topo: Option<&Topology>,
-        tagged: Option<TaggedBase>,
+        mut tagged: Option<TaggedBase>,
         num_vertices: usize,
         options: PlanOptions<'t>,
     ) -> Result<Self, MeshError> {
@@ -442,22 +451,28 @@ impl<'t> SurfacePlan<'t> {
                 fallbacks: Vec::new(),
             },
         };
-        // Whole-mesh steps only for meshes without tags (the step has no
-        // creasing rules), and only where they refine no face that does not
+        // Poles of fans a tag reached at a coarser level (a vertex keeps
+        // its index through a step).
+        let mut tagged_fans: BTreeSet<u32> = BTreeSet::new();
+        // Whole-mesh steps only where they refine no face that does not
         // need it: for a polar fan whose C²PS configuration a step
-        // completes (the step refines poles by C²PS), or when every face
-        // needs refinement (a triangle mesh; the step is the adaptive
-        // refinement's first level, made at once). Everything else is
-        // refined adaptively, caps included.
-        while let Some(t) = level_topo.as_ref().filter(|_| tagged.is_none()) {
+        // completes and no tag reaches (the step refines poles by C²PS), or,
+        // in a mesh without tags, when every face needs refinement (a
+        // triangle mesh; the step is the adaptive refinement's first level,
+        // made at once). A mesh with tags is stepped with OpenSubdiv's rules
+        // ([`crate::tagged_step`]). Everything else is refined adaptively,
+        // caps included.
+        while let Some(t) = level_topo.as_ref() {
+            let clean = tagged.as_ref().map(|b| b.clean.as_slice());
             let polar_pending = !options.catmull_clark
                 && pass.fallbacks.iter().any(|&(v, r)| {
-                    r == Reason::PolarIncomplete && polar_config(t, v as usize, None, false).is_ok()
+                    r == Reason::PolarIncomplete && step_seed(t, v as usize, clean).is_some()
                 });
-            let every_face = pass
-                .uncovered
-                .iter()
-                .all(|r| r.is_some_and(Reason::refinement_helps));
+            let every_face = tagged.is_none()
+                && pass
+                    .uncovered
+                    .iter()
+                    .all(|r| r.is_some_and(Reason::refinement_helps));
             if (steps.len() as u32) >= MAX_STEPS
                 || !(polar_pending || every_face)
                 || !pass
@@ -468,21 +483,28 @@ impl<'t> SurfacePlan<'t> {
             {
                 break;
             }
+            let seeds: Vec<PolarSeed> = (0..t.num_vertices())
+                .filter(|&v| !options.catmull_clark && is_fan(t, v))
+                .filter_map(|v| step_seed(t, v, clean))
+                .collect();
+            let (refined, next_base) = match &tagged {
+                None => (try_global_step(t, &charts, &seeds)?, None),
+                Some(b) => match tagged_step(t, b, &charts, &seeds)? {
+                    Some((r, next)) => (r, Some(next)),
+                    None => break,
+                },
+            };
             if steps.is_empty() {
                 needed = uncovered_list(&pass.uncovered, &charts, true);
             }
-            let seeds: Vec<PolarSeed> = (0..t.num_vertices())
-                .filter(|&v| !options.catmull_clark && is_fan(t, v))
-                .filter_map(|v| polar_config(t, v, None, false).ok())
-                .map(|c| PolarSeed {
-                    pole: c.pole,
-                    link1: c.links[0].clone(),
-                    link2: c.links[1].clone(),
-                    triangles: c.triangles.clone(),
-                    quads: c.quads.clone(),
-                })
-                .collect();
-            let refined = try_global_step(t, &charts, &seeds)?;
+            // A fan a tag reached is Catmull-Clark: its triangles are quads
+            // after the step, and the pole's fallback stays the tag's.
+            tagged_fans.extend(
+                pass.fallbacks
+                    .iter()
+                    .filter(|&&(v, r)| r == Reason::Feature && is_fan(t, v as usize))
+                    .map(|&(v, _)| v),
+            );
             let mut new_pole_steps = mem::filled(refined.num_vertices, 0)?;
             for (seed, &p) in seeds.iter().zip(&refined.poles) {
                 new_pole_steps[p as usize] = pole_steps[seed.pole as usize] + 1;
@@ -491,7 +513,17 @@ impl<'t> SurfacePlan<'t> {
             charts = refined.charts;
             steps.push(refined.stencils);
             pole_steps = new_pole_steps;
-            pass = analyse(&next, &options, None)?;
+            pass = analyse(
+                &next,
+                &options,
+                next_base.as_ref().map(|b| b.clean.as_slice()),
+            )?;
+            for (v, r) in &mut pass.fallbacks {
+                if tagged_fans.contains(v) {
+                    *r = Reason::Feature;
+                }
+            }
+            tagged = next_base;
             level_topo = Some(next);
         }
         if steps.is_empty() {
@@ -910,6 +942,44 @@ fn uncovered_list(
     out
 }
 
+/// Whether face `f` is clean (no tag reaches it; every face without tags).
+fn is_clean(clean: Option<&[bool]>, f: u32) -> bool {
+    clean.is_none_or(|c| c.get(f as usize).copied().unwrap_or(false))
+}
+
+/// Whether no tag reaches `faces` of `t`: they and every face around their
+/// vertices are clean.
+fn around_clean(t: &Topology, clean: Option<&[bool]>, faces: &[u32]) -> bool {
+    clean.is_none()
+        || faces.iter().all(|&f| {
+            t.face(f as usize).iter().all(|&v| {
+                t.outgoing(v as usize)
+                    .all(|h| is_clean(clean, t.face_of(h)))
+            })
+        })
+}
+
+/// The seed a whole-mesh step refines fan `v` with by C²PS (the module
+/// doc's rule 4): its links 1 and 2 are there, and no tag reaches its
+/// triangles and quads (nor the faces around their vertices, which hold
+/// the step's C²PS rows and the next level's configuration).
+fn step_seed(t: &Topology, v: usize, clean: Option<&[bool]>) -> Option<PolarSeed> {
+    let c = polar_config(t, v, None, false).ok()?;
+    if clean.is_some() {
+        let faces: Vec<u32> = c.triangles.iter().chain(&c.quads).copied().collect();
+        if !around_clean(t, clean, &faces) {
+            return None;
+        }
+    }
+    Some(PolarSeed {
+        pole: c.pole,
+        link1: c.links[0].clone(),
+        link2: c.links[1].clone(),
+        triangles: c.triangles,
+        quads: c.quads,
+    })
+}
+
 /// Classifies every face of one level.
 fn analyse(
     t: &Topology,
@@ -919,14 +989,8 @@ fn analyse(
     let nf = t.num_faces();
     // A cap needs its faces and the faces around their vertices clean; a
     // regular face itself.
-    let is_clean = |f: u32| clean.is_none_or(|c| c[f as usize]);
-    let around_clean = |faces: &[u32]| {
-        faces.iter().all(|&f| {
-            t.face(f as usize)
-                .iter()
-                .all(|&v| t.outgoing(v as usize).all(|h| is_clean(t.face_of(h))))
-        })
-    };
+    let is_clean = |f: u32| is_clean(clean, f);
+    let around_clean = |faces: &[u32]| around_clean(t, clean, faces);
     let mut owner: Vec<Option<Reason>> = mem::filled(nf, None)?;
     let mut covered = mem::filled(nf, false)?;
     let mut pass = Pass {
@@ -964,6 +1028,16 @@ fn analyse(
                     } else {
                         vertex_reason[v] = Some(Reason::Overlap);
                     }
+                }
+                // A tag reaching links 1 and 2 stops the cap, whatever
+                // further out is missing.
+                Err(Reason::PolarIncomplete)
+                    if clean.is_some() && polar_config(t, v, None, false).is_ok() =>
+                {
+                    vertex_reason[v] = Some(match step_seed(t, v, clean) {
+                        Some(_) => Reason::PolarIncomplete,
+                        None => Reason::Feature,
+                    });
                 }
                 Err(r) => vertex_reason[v] = Some(r),
             }

@@ -19,77 +19,21 @@ mod common;
 
 use capdiv::Point3;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate};
-use capdiv_mesh::{
-    samples, EdgeCrease, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan,
-    VertexCorner,
-};
-use common::Collect;
+use capdiv_mesh::{samples, EdgeCrease, MeshInput, PatchKind, Scheme, SurfacePlan, VertexCorner};
+use common::{plan_and_evaluate, Collect};
 use std::collections::HashMap;
 
-fn plan_and_evaluate(m: &MeshInput, depth: u32, cc: bool) -> (SurfacePlan<'static>, Collect<f64>) {
-    let plan = SurfacePlan::for_mesh(
-        m,
-        PlanOptions {
-            depth,
-            catmull_clark: cc,
-            ..Default::default()
-        },
-    )
-    .expect("plan");
-    assert!(plan.uncovered.is_empty(), "uncovered {:?}", plan.uncovered);
-    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-    let mut c = Collect::default();
-    ev.evaluate(&m.vertices, &mut c).expect("evaluate");
-    (plan, c)
-}
-
-fn det(m: &capdiv_mesh::chart::Affine) -> f64 {
-    (m.du[0] * m.dv[1] - m.du[1] * m.dv[0]).abs()
-}
-
-/// Per (input face, corner): area covered by patches and holes.
-fn coverage(plan: &SurfacePlan<'_>, c: &Collect<f64>) -> HashMap<(u32, Option<u8>), f64> {
-    let mut area: HashMap<(u32, Option<u8>), f64> = HashMap::new();
+/// [`common::check_coverage`] on a mesh without poles (C²PS patches are
+/// checked in `tagged_step.rs`).
+fn check_coverage(name: &str, m: &MeshInput, plan: &SurfacePlan<'_>, c: &Collect<f64>) {
     for p in &c.patches {
         assert_ne!(
             p.kind,
             PatchKind::C2ps,
             "coverage is checked on meshes without poles"
         );
-        let [u0, u1, v0, v1] = p.domain;
-        *area.entry((p.face, p.corner)).or_default() += (u1 - u0) * (v1 - v0);
     }
-    for h in &plan.last_holes {
-        *area.entry((h.face, h.corner)).or_default() += det(&h.map);
-    }
-    // A cap's last hole: the central 2^-depth square of each sector.
-    let side = 0.5f64.powi(plan.options.depth as i32);
-    for e in &plan.extraordinary {
-        for s in &e.sectors {
-            *area.entry((s.face, s.corner)).or_default() += det(&s.map) * side * side;
-        }
-    }
-    area
-}
-
-fn check_coverage(name: &str, m: &MeshInput, plan: &SurfacePlan<'_>, c: &Collect<f64>) {
-    let area = coverage(plan, c);
-    for (f, face) in m.faces.iter().enumerate() {
-        let hole = m.tags.holes.contains(&(f as u32));
-        let parts: Vec<Option<u8>> = if face.len() == 4 {
-            vec![None]
-        } else {
-            (0..face.len() as u8).map(Some).collect()
-        };
-        for corner in parts {
-            let a = area.get(&(f as u32, corner)).copied().unwrap_or(0.0);
-            let want = if hole { 0.0 } else { 1.0 };
-            assert!(
-                (a - want).abs() <= 1e-12,
-                "{name}: face {f} corner {corner:?} covered {a}, want {want}"
-            );
-        }
-    }
+    common::check_coverage(name, m, &[], plan, c);
 }
 
 fn tess(c: &Collect<f64>) -> capdiv_mesh::tessellate::Tessellation<f64> {

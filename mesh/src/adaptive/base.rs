@@ -27,6 +27,8 @@ pub struct TaggedBase {
     pub smooth_triangles: bool,
     /// Crease tags whose two vertices share no edge (ignored).
     pub creases_not_edges: usize,
+    /// The boundary rule (what [`Self::clean`] allows at one-face corners).
+    pub boundary: BoundaryInterpolation,
 }
 
 impl TaggedBase {
@@ -93,6 +95,7 @@ pub fn tagged_base(mesh: &MeshInput) -> TaggedBase {
         chaikin: tags.crease_method == CreaseMethod::Chaikin,
         smooth_triangles,
         creases_not_edges: sharp.len() - edges_found,
+        boundary: tags.boundary,
     }
 }
 
@@ -115,6 +118,41 @@ pub fn plain_base(t: &Topology) -> TaggedBase {
         chaikin: false,
         smooth_triangles: false,
         creases_not_edges: 0,
+        boundary: BoundaryInterpolation::EdgeAndCorner,
+    }
+}
+
+/// The level a whole-mesh step makes of `parent`'s level
+/// ([`crate::tagged_step`]): `faces` over `vertex_sharpness.len()`
+/// vertices, each vertex its own point, `face_parent[f]` the face of
+/// `parent` that face `f` lies in (a hole's children are holes), the
+/// sharpness its refinement gave each vertex and edge (`sharp(a, b)` with
+/// `a ≤ b`, 0 for an edge it did not make). Boundary and non-manifold
+/// sharpness came down from `parent` with the rest (infinite stays
+/// infinite), so nothing is sharpened again; the options and
+/// [`TaggedBase::clean`]'s rule are `parent`'s.
+pub fn stepped_base(
+    parent: &TaggedBase,
+    faces: &[Vec<u32>],
+    face_parent: &[u32],
+    vertex_sharpness: Vec<f32>,
+    sharp: impl FnMut(u32, u32) -> f32,
+) -> TaggedBase {
+    let faces: Vec<&[u32]> = faces.iter().map(|f| &f[..]).collect();
+    let point = (0..vertex_sharpness.len() as u32).collect();
+    let hole = face_parent
+        .iter()
+        .map(|&f| parent.level.hole.get(f as usize).copied().unwrap_or(false))
+        .collect();
+    let level = Level::new(&faces, point, vertex_sharpness, hole, sharp);
+    let clean = clean_faces(&level, parent.boundary, parent.smooth_triangles);
+    TaggedBase {
+        level,
+        clean,
+        chaikin: parent.chaikin,
+        smooth_triangles: parent.smooth_triangles,
+        creases_not_edges: parent.creases_not_edges,
+        boundary: parent.boundary,
     }
 }
 

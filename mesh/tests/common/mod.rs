@@ -337,3 +337,98 @@ pub fn closed_and_smooth(name: &str, patches: &[PatchRecord<f64>]) -> (usize, f6
     println!("{name}: {pairs} pairs, worst normal {wn:.1e}, ΔH/κ {wh:.1e}, ΔK/κ² {wk:.1e}");
     (pairs, wn, wh, wk)
 }
+
+// ---------------------------------------------------------------------------
+// Coverage of input faces by a surface's patches and holes
+// (mesh/tests/adaptive_surface.rs, mesh/tests/tagged_step.rs).
+
+/// Plans `m` with its tags (`SurfacePlan::for_mesh`, at `depth`, every cap
+/// Catmull-Clark when `catmull_clark`), checks that no face is uncovered and
+/// evaluates it in f64.
+pub fn plan_and_evaluate(
+    m: &MeshInput,
+    depth: u32,
+    catmull_clark: bool,
+) -> (SurfacePlan<'static>, Collect<f64>) {
+    let plan = SurfacePlan::for_mesh(
+        m,
+        PlanOptions {
+            depth,
+            catmull_clark,
+            ..Default::default()
+        },
+    )
+    .expect("plan");
+    assert!(plan.uncovered.is_empty(), "uncovered {:?}", plan.uncovered);
+    let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+    let mut c = Collect::default();
+    ev.evaluate(&m.vertices, &mut c).expect("evaluate");
+    (plan, c)
+}
+
+/// Area scale of an affine chart map.
+pub fn det(m: &capdiv_mesh::chart::Affine) -> f64 {
+    (m.du[0] * m.dv[1] - m.du[1] * m.dv[0]).abs()
+}
+
+/// Per input face (per corner of a face that is neither a quad nor a polar
+/// triangle), the patches' domains plus the holes left for the last rings
+/// of caps and of the adaptive refinement add up to the face (0 for a hole:
+/// a tagged one, or one of `holes`). An EG or Catmull-Clark cap's hole is
+/// the central `2^-depth` square of each sector; a C²PS cap's hole is
+/// `u < 2^(1 − depth − prior_steps)` of each triangle's polar square.
+pub fn check_coverage(
+    name: &str,
+    m: &MeshInput,
+    holes: &[u32],
+    plan: &SurfacePlan<'_>,
+    c: &Collect<f64>,
+) {
+    let mut area: std::collections::HashMap<(u32, Option<u8>), f64> = Default::default();
+    for p in &c.patches {
+        let [u0, u1, v0, v1] = p.domain;
+        *area.entry((p.face, p.corner)).or_default() += (u1 - u0) * (v1 - v0);
+    }
+    for h in &plan.last_holes {
+        *area.entry((h.face, h.corner)).or_default() += det(&h.map);
+    }
+    let depth = plan.options.depth as i32;
+    let side = 0.5f64.powi(depth);
+    for e in &plan.extraordinary {
+        for s in &e.sectors {
+            *area.entry((s.face, s.corner)).or_default() += det(&s.map) * side * side;
+        }
+    }
+    for p in &plan.polar {
+        let mut tri = p.triangles.clone();
+        tri.sort_unstable();
+        tri.dedup();
+        for t in tri {
+            *area.entry((t, None)).or_default() += 0.5f64.powi(depth + p.prior_steps as i32 - 1);
+        }
+    }
+    let polar: Vec<u32> = plan
+        .polar
+        .iter()
+        .flat_map(|p| p.triangles.clone())
+        .collect();
+    for (f, face) in m.faces.iter().enumerate() {
+        let want = if m.tags.holes.contains(&(f as u32)) || holes.contains(&(f as u32)) {
+            0.0
+        } else {
+            1.0
+        };
+        let parts: Vec<Option<u8>> = if face.len() == 4 || polar.contains(&(f as u32)) {
+            vec![None]
+        } else {
+            (0..face.len() as u8).map(Some).collect()
+        };
+        for corner in parts {
+            let a = area.get(&(f as u32, corner)).copied().unwrap_or(0.0);
+            assert!(
+                (a - want).abs() <= 1e-12,
+                "{name}: face {f} corner {corner:?} covered {a}, want {want}"
+            );
+        }
+    }
+}
