@@ -743,12 +743,7 @@ impl<R: Real + Display + LowerExp, W: Write> MeshSink<R> for ObjWriter<W> {
             return;
         }
         self.line.clear();
-        self.line.push('f');
-        for &i in face.corners() {
-            let i = i as u64 + 1;
-            let _ = write!(self.line, " {i}//{i}");
-        }
-        self.line.push('\n');
+        super::obj::write_face(&mut self.line, face.corners(), false);
         self.error = self.out.write_str(&self.line);
     }
 }
