@@ -176,6 +176,30 @@ impl CliError {
         }
     }
 
+    /// A planning, bounding or evaluation error of `source`
+    /// ([`capdiv_mesh::SurfaceError`]): as [`CliError::mesh`],
+    /// [`CliError::TooLarge`] (the limit is `--max-patches`) or
+    /// [`CliError::eval`].
+    pub fn surface(source: &str, error: capdiv_mesh::SurfaceError) -> Self {
+        use capdiv_mesh::SurfaceError;
+        match error {
+            SurfaceError::Mesh(e) => CliError::mesh(source, e),
+            SurfaceError::Eval(e) => CliError::eval(source, e),
+            SurfaceError::TooLarge {
+                patches,
+                max,
+                upper_bound,
+            } => CliError::TooLarge {
+                source: source.to_string(),
+                patches,
+                up_to: upper_bound,
+                max,
+            },
+            // A cause the library may add later: its own one-line message.
+            other => CliError::Usage(format!("{source}: {other}")),
+        }
+    }
+
     /// The error with its vertices and faces named by `naming` (mesh and
     /// evaluation errors; others unchanged).
     pub fn named(self, naming: &Naming) -> Self {

@@ -21,14 +21,13 @@
 use crate::args::{ShapeScheme, DEFAULT_MAX_PATCHES};
 use crate::commands::eg::{cnet, subdivision};
 use crate::commands::polar::Config;
-use crate::commands::surface::check_size;
 use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, HeapStorage};
 use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
-use capdiv_mesh::{Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme, SurfacePlan};
+use capdiv_mesh::{BoundedPlan, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme};
 
 /// One patch of a [`Shape`].
 #[derive(Clone, Debug)]
@@ -394,21 +393,20 @@ fn mesh_shape(
     catmull_clark: bool,
     keep: Option<usize>,
 ) -> Result<Shape, CliError> {
-    let mesh_err = |error| CliError::mesh(name, error);
-    let plan = SurfacePlan::for_mesh(
+    let surface_err = |error| CliError::surface(name, error);
+    let mut out = CollectSurface::new();
+    BoundedPlan::evaluate_mesh(
         mesh,
         PlanOptions {
             depth,
             catmull_clark,
             ..Default::default()
         },
+        DEFAULT_MAX_PATCHES,
+        None,
+        &mut out,
     )
-    .map_err(mesh_err)?;
-    check_size(name, &plan, DEFAULT_MAX_PATCHES)?;
-    let mut ev = Evaluator::<f64>::new(&plan).map_err(|error| CliError::eval(name, error))?;
-    let mut out = CollectSurface::new();
-    ev.evaluate(&mesh.vertices, &mut out)
-        .map_err(|error| CliError::eval(name, error))?;
+    .map_err(surface_err)?;
     if let Some(e) = out.refused() {
         return Err(CliError::out_of_memory(name, e.bytes));
     }

@@ -66,6 +66,7 @@ extern crate alloc;
 pub struct ReadmeExamples;
 
 pub mod adaptive;
+pub mod bounded;
 pub mod caps;
 pub mod chart;
 pub mod error;
@@ -89,6 +90,7 @@ pub mod tags;
 pub mod tessellate;
 pub mod topology;
 
+pub use bounded::{BoundedPlan, SurfaceError};
 pub use error::MeshError;
 pub use evaluate::{
     CapRecord, EvalBuffers, EvalError, Evaluator, PatchKind, PatchRecord, SurfaceSink,

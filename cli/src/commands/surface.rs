@@ -4,9 +4,10 @@
 //! The mesh is Wavefront OBJ (with OpenSubdiv's `t` tag lines) or JSON
 //! `{"kind": "mesh", "vertices", "faces"}` (with optional tag fields),
 //! chosen by content ([`looks_like_json`]). It is validated and analysed
-//! once with its tags ([`SurfacePlan::for_mesh`]: regular faces, polar fans,
-//! extraordinary points, adaptive refinement of the rest) and
-//! evaluated in the precision asked for ([`Evaluator`]). Output:
+//! once with its tags ([`capdiv_mesh::SurfacePlan::for_mesh`]: regular
+//! faces, polar fans, extraordinary points, adaptive refinement of the
+//! rest), refused above `--max-patches` ([`BoundedPlan`]), and evaluated in
+//! the precision asked for ([`capdiv_mesh::Evaluator`]). Output:
 //!
 //! - `json`: `{"patches": [...], "caps": [...], "summary": {...}}` (see
 //!   [`PatchJson`], [`CapJson`], [`Summary`]);
@@ -51,8 +52,8 @@ use capdiv_mesh::tessellate::{
     Tessellation,
 };
 use capdiv_mesh::{
-    CapRecord, Evaluator, FaceVarying, MeshInput, PatchRecord, PatchUv, PlanOptions, SurfacePlan,
-    SurfaceSink, Topology,
+    BoundedPlan, CapRecord, FaceVarying, MeshInput, PatchRecord, PatchUv, PlanOptions, SurfaceSink,
+    Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -353,32 +354,6 @@ pub struct Surface<R> {
     pub summary: Summary,
 }
 
-/// Refuses a plan of more than `max` patches ([`CliError::TooLarge`]).
-pub fn check_size(name: &str, plan: &SurfacePlan<'_>, max: u64) -> Result<(), CliError> {
-    check_bound(name, plan, max, false)
-}
-
-/// [`check_size`]; `up_to`: caps may stop before the plan's depth, so its
-/// count (`SurfacePlan::patch_count`: regular patches plus, per cap, the
-/// patches of every ring to the depth) is an upper bound.
-pub fn check_bound(
-    name: &str,
-    plan: &SurfacePlan<'_>,
-    max: u64,
-    up_to: bool,
-) -> Result<(), CliError> {
-    let patches = plan.patch_count();
-    if patches > max {
-        return Err(CliError::TooLarge {
-            source: name.to_string(),
-            patches,
-            up_to,
-            max,
-        });
-    }
-    Ok(())
-}
-
 /// Validates, analyses and evaluates `mesh` in `R` (positions cast), the
 /// default scheme.
 pub fn build<R: Scalar>(
@@ -478,6 +453,7 @@ pub fn run_scheme<R: Scalar>(
 ) -> Result<(Summary, Option<FaceVarying>), CliError> {
     let mesh_err = |error| CliError::mesh(name, error);
     let eval_err = |error| CliError::eval(name, error);
+    let surface_err = |error| CliError::surface(name, error);
     let start = Instant::now();
     let eg_tables = options
         .tables
@@ -485,24 +461,26 @@ pub fn run_scheme<R: Scalar>(
         .map(Table::rule)
         .collect::<Result<_, _>>()?;
     let catmull_clark = options.catmull_clark;
-    let plan = SurfacePlan::for_mesh(
+    // Some exactly when `--tolerance` is given: the patch count is then an
+    // upper bound.
+    let tolerance = options.tolerance.absolute(diagonal(mesh));
+    let bounded = BoundedPlan::new(
         mesh,
         PlanOptions {
             depth: options.depth,
             eg_tables,
             catmull_clark,
         },
+        options.max_patches,
+        tolerance,
     )
-    .map_err(mesh_err)?;
-    let up_to = options.tolerance != Tolerance::None;
-    check_bound(name, &plan, options.max_patches, up_to)?;
+    .map_err(surface_err)?;
+    let plan = bounded.plan();
     let analysis = start.elapsed();
 
     let start = Instant::now();
     let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
-    let mut evaluator = Evaluator::<R>::new(&plan).map_err(eval_err)?;
-    let tolerance = options.tolerance.absolute(diagonal(mesh));
-    evaluator.set_hole_tolerance(tolerance);
+    let mut evaluator = bounded.evaluator::<R>().map_err(surface_err)?;
     let mut stats = SurfaceStats::new();
     crate::threads::evaluate(
         options.threads,
@@ -578,7 +556,7 @@ pub fn run_scheme<R: Scalar>(
             evaluation: evaluation.as_secs_f64() * 1e3,
         },
     };
-    let facevarying = FaceVarying::new(mesh, &plan).map_err(mesh_err)?;
+    let facevarying = FaceVarying::new(mesh, plan).map_err(mesh_err)?;
     Ok((summary, facevarying))
 }
 
