@@ -26,8 +26,8 @@ mod common;
 #[path = "../tests/osd/mod.rs"]
 mod osd;
 
-use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord};
-use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink, Topology};
+use capdiv_mesh::sinks::SurfaceStats;
+use capdiv_mesh::{samples, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
 use common::{feature_torus, helper, job_file, time, DEPTH};
 use std::collections::BTreeMap;
 use std::hint::black_box;
@@ -82,23 +82,6 @@ fn capdiv_analyse(mesh: &MeshInput) -> SurfacePlan<'static> {
     SurfacePlan::for_mesh(mesh, options()).expect("capdiv analyses the mesh")
 }
 
-/// Counts the patches of one evaluation by level.
-#[derive(Default)]
-struct Count {
-    by_level: BTreeMap<u32, usize>,
-    acc: f64,
-}
-
-impl SurfaceSink<f64> for Count {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        *self.by_level.entry(p.level).or_default() += 1;
-        self.acc += p.domain[0];
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.acc += c.limit.0[0];
-    }
-}
-
 /// The helper's `key value` lines.
 fn run_helper(helper: &Path, job: &Path) -> BTreeMap<String, f64> {
     let out = Command::new(helper)
@@ -149,10 +132,11 @@ fn measure(case: &Case, helper: &Path) -> Row {
     });
     let plan = capdiv_analyse(&case.mesh);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-    let mut count = Count::default();
-    ev.evaluate(&case.mesh.vertices, &mut count)
+    let mut stats = SurfaceStats::new();
+    ev.evaluate(&case.mesh.vertices, &mut stats)
         .expect("evaluate");
-    black_box(count.acc);
+    // The levels that have patches.
+    let by_level = (0u32..).zip(stats.levels).filter(|&(_, n)| n > 0).collect();
     let osd = run_helper(helper, &job_file(case.name, &case.mesh));
     Row {
         name: case.name,
@@ -161,7 +145,7 @@ fn measure(case: &Case, helper: &Path) -> Row {
         capdiv_samples,
         topology_ns: topology * 1e9,
         osd,
-        patches: count.by_level,
+        patches: by_level,
         uncovered: plan.uncovered.len(),
         steps: plan.steps.len(),
     }

@@ -10,27 +10,10 @@
 //!
 //! `cargo bench -p capdiv-mesh --bench surface`; the sink only counts.
 
-use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions};
-use capdiv_mesh::{SurfacePlan, SurfaceSink, Topology};
+use capdiv_mesh::sinks::PatchCounts;
+use capdiv_mesh::{samples, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
-
-/// Counts patches; touches one coordinate so nothing is optimised away.
-#[derive(Default)]
-struct Count {
-    patches: usize,
-    acc: f64,
-}
-
-impl SurfaceSink<f64> for Count {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.patches += 1;
-        self.acc += p.domain[0];
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.acc += c.limit.0[0];
-    }
-}
 
 fn torus(faces: usize) -> MeshInput {
     let side = (faces as f64).sqrt().ceil() as usize;
@@ -76,16 +59,16 @@ fn bench(c: &mut Criterion, name: &str, make: fn(usize) -> MeshInput, depth: u32
         )
         .expect("plan");
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-        let mut count = Count::default();
+        let mut count = PatchCounts::default();
         ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
         // Throughput in emitted patches; faces are in the id.
-        evaluation.throughput(Throughput::Elements(count.patches as u64));
-        let id = format!("{}f/{}p", mesh.faces.len(), count.patches);
+        evaluation.throughput(Throughput::Elements(count.total as u64));
+        let id = format!("{}f/{}p", mesh.faces.len(), count.total);
         evaluation.bench_function(BenchmarkId::from_parameter(id), |b| {
             b.iter(|| {
-                let mut count = Count::default();
+                let mut count = PatchCounts::default();
                 ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
-                black_box(count.acc)
+                black_box(count.total)
             })
         });
     }

@@ -8,20 +8,8 @@
 //! patch; `features`: copies of a mushroom (two valence-12 poles), a rounded
 //! cube (eight valence-3 EG caps) and a valence-7 extraordinary disk
 //! (Catmull-Clark cap), caps to depth 3 (as `benches/surface.rs`).
-use capdiv_mesh::{samples, CapRecord, Evaluator, PatchRecord, PlanOptions};
-use capdiv_mesh::{SurfacePlan, SurfaceSink, Topology};
-
-#[derive(Default)]
-struct Count(usize, f64);
-impl SurfaceSink<f64> for Count {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0 += 1;
-        self.1 += p.domain[1];
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        self.1 += c.limit.0[0];
-    }
-}
+use capdiv_mesh::sinks::PatchCounts;
+use capdiv_mesh::{samples, Evaluator, PlanOptions, SurfacePlan, Topology};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -40,12 +28,11 @@ fn main() {
     };
     let plan = SurfacePlan::new(&topo, options).expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-    let mut count = Count::default();
+    let mut count = PatchCounts::default();
     ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
     println!(
-        "{kind}: {} faces, {} patches ({})",
+        "{kind}: {} faces, {} patches",
         mesh.faces.len(),
-        count.0,
-        count.1
+        count.total
     );
 }

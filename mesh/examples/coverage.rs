@@ -1,19 +1,19 @@
 //! Prints the coverage of every sample mesh: patches per kind, caps per
 //! scheme, refinement steps, uncovered faces.
+use capdiv_mesh::sinks::SurfaceStats;
 use capdiv_mesh::*;
 use std::collections::BTreeMap;
 
-struct Count(BTreeMap<String, usize>);
-impl SurfaceSink<f64> for Count {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        *self.0.entry(p.kind.id().to_string()).or_default() += 1;
-    }
-    fn cap(&mut self, c: &CapRecord<f64>) {
-        *self
-            .0
-            .entry(format!("cap {} n={}", c.scheme.id(), c.valence))
-            .or_default() += 1;
-    }
+/// Patches per kind id and `cap SCHEME n=VALENCE` counts, those met only.
+fn counts(stats: &SurfaceStats) -> BTreeMap<String, usize> {
+    let kinds = PatchKind::ALL
+        .into_iter()
+        .map(|k| (k.id().to_string(), stats.patches.of(k)));
+    let caps = stats
+        .caps
+        .iter()
+        .map(|c| (format!("cap {} n={}", c.scheme.id(), c.valence), c.count));
+    kinds.chain(caps).filter(|&(_, n)| n > 0).collect()
 }
 
 fn main() {
@@ -42,8 +42,8 @@ fn main() {
         )
         .unwrap();
         let mut ev = Evaluator::<f64>::new(&plan).unwrap();
-        let mut c = Count(BTreeMap::new());
-        ev.evaluate(&m.vertices, &mut c).unwrap();
+        let mut stats = SurfaceStats::new();
+        ev.evaluate(&m.vertices, &mut stats).unwrap();
         println!(
             "{name}: steps {} needed {} uncovered {:?} {:?}",
             plan.steps.len(),
@@ -53,7 +53,7 @@ fn main() {
                 .map(|u| (u.face, u.reason.id()))
                 .take(6)
                 .collect::<Vec<_>>(),
-            c.0
+            counts(&stats)
         );
     }
 }

@@ -42,6 +42,15 @@ pub enum PatchKind {
 }
 
 impl PatchKind {
+    /// Every kind, in the order of the counts of
+    /// [`crate::sinks::PatchCounts`].
+    pub const ALL: [PatchKind; 4] = [
+        PatchKind::Regular,
+        PatchKind::C2ps,
+        PatchKind::Eg,
+        PatchKind::CatmullClark,
+    ];
+
     /// Identifier used in JSON.
     pub fn id(self) -> &'static str {
         match self {

@@ -1,9 +1,10 @@
 //! The ready-made sinks (`capdiv_mesh::sinks`) on small meshes whose counts
-//! follow from their shape: `SurfaceStats` counts, `CollectSurface` keeps,
+//! follow from their shape: `SurfaceStats` counts, `PatchCounts` counts only
+//! patches per kind, `CollectSurface` keeps,
 //! `Tee` hands each record to both.
 
 use capdiv_mesh::sinks::{CapCount, CollectSurface, PatchCounts, SurfaceStats, Tee};
-use capdiv_mesh::{samples, Evaluator, MeshInput, PlanOptions, Scheme, SurfacePlan};
+use capdiv_mesh::{samples, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan};
 
 fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
     SurfacePlan::for_mesh(
@@ -150,4 +151,41 @@ fn non_finite_points_are_seen() {
     assert!(!stats.finite);
     assert_eq!(stats.patches.regular, 1);
     assert_eq!(stats.levels, [1]);
+}
+
+#[test]
+fn patch_counts_alone_count_each_kept_patch_by_its_kind() {
+    // PatchCounts as a sink sees the same patches as SurfaceStats and
+    // CollectSurface beside it, and ignores caps: each per-kind count is the
+    // number of kept patches of that kind, and the total their sum.
+    for (mesh, depth) in [
+        (samples::feature_mix(40), 2),
+        (samples::mushroom(), 3),
+        (samples::cube(), 1),
+    ] {
+        let plan = plan(&mesh, depth);
+        let mut alone = PatchCounts::default();
+        let mut stats = SurfaceStats::new();
+        let mut kept = CollectSurface::new();
+        Evaluator::<f64>::new(&plan)
+            .unwrap()
+            .evaluate(
+                &mesh.vertices,
+                &mut Tee(&mut alone, Tee(&mut stats, &mut kept)),
+            )
+            .unwrap();
+        assert_eq!(alone, stats.patches);
+        let (patches, caps) = kept.finish().unwrap();
+        assert!(!caps.is_empty());
+        for kind in PatchKind::ALL {
+            let n = patches.iter().filter(|p| p.kind == kind).count();
+            assert_eq!(alone.of(kind), n, "{kind:?}");
+        }
+        assert_eq!(alone.total, patches.len());
+        assert_eq!(
+            alone.total,
+            alone.regular + alone.c2ps + alone.eg + alone.catmull_clark
+        );
+        assert_eq!(alone.total as u64, plan.patch_count());
+    }
 }

@@ -46,14 +46,14 @@ use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
-use capdiv_mesh::sinks::{CollectSurface, SurfaceStats, Tee};
+use capdiv_mesh::sinks::{CollectSurface, PatchCounts, SurfaceStats, Tee};
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
     Tessellation,
 };
 use capdiv_mesh::{
-    BoundedPlan, CapRecord, FaceVarying, MeshInput, PatchRecord, PatchUv, PlanOptions, SurfaceSink,
-    Topology,
+    BoundedPlan, CapRecord, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
+    SurfaceSink, Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -536,7 +536,7 @@ pub fn run_scheme<R: Scalar>(
         }
         .name(),
         tags: TagSummary::of(&mesh.tags),
-        patches: stats.patches.into(),
+        patches: stats.patches,
         caps,
         refinement_steps: plan.steps.len(),
         needed_refinement: reasons(&plan.needed_refinement),
@@ -679,6 +679,7 @@ pub struct Summary {
     /// The subdivision tags the analysis was given.
     pub tags: TagSummary,
     /// Patches per kind.
+    #[serde(serialize_with = "patch_counts_json")]
     pub patches: PatchCounts,
     /// Caps per scheme and valence.
     pub caps: Vec<CapCount>,
@@ -799,20 +800,16 @@ pub struct InputSummary {
     pub closed: bool,
 }
 
-/// Patches per kind, as printed ([`capdiv_mesh::sinks::PatchCounts`]).
-#[derive(Clone, Debug, Default, Serialize)]
-pub struct PatchCounts {
-    /// B-spline patches of regular faces.
-    pub regular: usize,
-    /// C²PS ring patches.
-    pub c2ps: usize,
-    /// EG ring patches.
-    pub eg: usize,
-    /// Catmull-Clark ring patches.
-    #[serde(rename = "catmull-clark")]
-    pub catmull_clark: usize,
-    /// All.
-    pub total: usize,
+/// `patches` of the JSON summary: the count of each kind under its id
+/// ([`PatchKind::id`]), then `total`.
+fn patch_counts_json<S: serde::Serializer>(p: &PatchCounts, s: S) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeStruct;
+    let mut fields = s.serialize_struct("PatchCounts", PatchKind::ALL.len() + 1)?;
+    for kind in PatchKind::ALL {
+        fields.serialize_field(kind.id(), &p.of(kind))?;
+    }
+    fields.serialize_field("total", &p.total)?;
+    fields.end()
 }
 
 /// Caps of one scheme and valence, as printed
@@ -825,18 +822,6 @@ pub struct CapCount {
     pub valence: usize,
     /// How many.
     pub count: usize,
-}
-
-impl From<capdiv_mesh::sinks::PatchCounts> for PatchCounts {
-    fn from(p: capdiv_mesh::sinks::PatchCounts) -> Self {
-        PatchCounts {
-            regular: p.regular,
-            c2ps: p.c2ps,
-            eg: p.eg,
-            catmull_clark: p.catmull_clark,
-            total: p.total,
-        }
-    }
 }
 
 impl From<&capdiv_mesh::sinks::CapCount> for CapCount {

@@ -1,5 +1,6 @@
 //! Ready-made [`SurfaceSink`]s: [`CollectSurface`] keeps every record,
-//! [`SurfaceStats`] counts them, [`Tee`] hands each record to two sinks
+//! [`SurfaceStats`] counts them, [`PatchCounts`] counts only patches per
+//! kind, [`Tee`] hands each record to two sinks
 //! (counting what another sink writes, say).
 
 mod collect;

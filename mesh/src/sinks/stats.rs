@@ -1,6 +1,7 @@
 //! [`SurfaceStats`]: a sink that counts what an evaluation gives — patches
 //! per kind and per level, caps per scheme and valence, the rings the caps
-//! emitted — and whether every point was finite.
+//! emitted — and whether every point was finite; [`PatchCounts`]: a sink
+//! that counts only patches per kind (no allocation, nothing else read).
 
 use crate::evaluate::{CapRecord, PatchKind, PatchRecord, SurfaceSink};
 use crate::mem::{self, OutOfMemory};
@@ -9,7 +10,22 @@ use crate::tessellate::PatchGeometry;
 use alloc::vec::Vec;
 use capdiv::Real;
 
-/// Patches per kind.
+/// Patches per kind; as a [`SurfaceSink`] it counts each patch it is given
+/// by its [`PatchRecord::kind`] and ignores caps.
+///
+/// ```
+/// use capdiv_mesh::sinks::PatchCounts;
+/// use capdiv_mesh::{samples, Evaluator, PlanOptions, SurfacePlan};
+///
+/// // A cube: eight EG caps of 3 sectors, 3 patches per sector and ring.
+/// let cube = samples::cube();
+/// let plan = SurfacePlan::for_mesh(&cube, PlanOptions { depth: 2, ..Default::default() })?;
+/// let mut counts = PatchCounts::default();
+/// Evaluator::<f64>::new(&plan).unwrap().evaluate(&cube.vertices, &mut counts).unwrap();
+/// assert_eq!(counts.eg, 8 * 3 * 3 * 2);
+/// assert_eq!(counts.total as u64, plan.patch_count());
+/// # Ok::<(), capdiv_mesh::MeshError>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PatchCounts {
     /// B-spline patches of regular faces ([`PatchKind::Regular`]).
@@ -35,6 +51,23 @@ impl PatchCounts {
         }
         self.total += 1;
     }
+
+    /// The patches of `kind` counted.
+    pub fn of(&self, kind: PatchKind) -> usize {
+        match kind {
+            PatchKind::Regular => self.regular,
+            PatchKind::C2ps => self.c2ps,
+            PatchKind::Eg => self.eg,
+            PatchKind::CatmullClark => self.catmull_clark,
+        }
+    }
+}
+
+impl<R> SurfaceSink<R> for PatchCounts {
+    fn patch(&mut self, p: &PatchRecord<R>) {
+        self.add(p.kind);
+    }
+    fn cap(&mut self, _: &CapRecord<R>) {}
 }
 
 /// Caps of one scheme and valence.
