@@ -4,9 +4,11 @@
 //! exact arithmetic; in `f32` it keeps every subdivision step's rounding
 //! relative to the cap's size, not to its distance from the origin.
 
+mod common;
+
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::PatchGeometry;
-use capdiv_mesh::{samples, Evaluator, MeshInput, PlanOptions, Scheme, SurfacePlan, Topology};
+use capdiv_mesh::{samples, Evaluator, MeshInput, Scheme, SurfacePlan, Topology};
 
 /// An offset exactly representable in `f32` under which every coordinate
 /// below stays exact (a multiple of 2⁻⁶ below 2¹¹ needs 17 bits).
@@ -66,11 +68,7 @@ fn roundings(here: [f32; 3], moved: [f32; 3]) -> f64 {
 /// up over the rings. Caps to depth 4, every cap Catmull-Clark when
 /// `catmull_clark`.
 fn caps_move_with_the_mesh(name: &str, mesh: MeshInput, catmull_clark: bool, scheme: Scheme) {
-    let options = PlanOptions {
-        depth: 4,
-        catmull_clark,
-        ..Default::default()
-    };
+    let options = common::plan_options(4, catmull_clark);
     let mesh = on_grid(mesh);
     let t = Topology::new(&mesh).expect("valid mesh");
     let plan = SurfacePlan::new(&t, options).expect("plan");

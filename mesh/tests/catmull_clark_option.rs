@@ -15,9 +15,7 @@
 //! ~1e-12 and ~1e-9).
 mod common;
 
-use capdiv_mesh::{
-    samples, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan, Topology,
-};
+use capdiv_mesh::{samples, Evaluator, MeshInput, PatchKind, Scheme, SurfacePlan, Topology};
 use capdiv_reference::{bezier, catmull_clark as cc};
 use common::*;
 
@@ -29,15 +27,7 @@ fn surface_with(
     catmull_clark: bool,
 ) -> (SurfacePlan<'static>, Collect<f64>) {
     let t = Topology::new(m).expect("valid mesh");
-    let plan = SurfacePlan::new(
-        &t,
-        PlanOptions {
-            depth,
-            catmull_clark,
-            ..Default::default()
-        },
-    )
-    .expect("plan");
+    let plan = SurfacePlan::new(&t, common::plan_options(depth, catmull_clark)).expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
     ev.evaluate(&m.vertices, &mut c).expect("evaluate");

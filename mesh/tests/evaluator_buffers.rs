@@ -4,7 +4,7 @@
 //! misused.
 
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink,
+    samples, CapRecord, Evaluator, MeshInput, PatchRecord, SurfacePlan, SurfaceSink,
 };
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -13,14 +13,7 @@ mod common;
 use common::Collect;
 
 fn plan(mesh: &MeshInput) -> SurfacePlan<'static> {
-    SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth: 3,
-            ..Default::default()
-        },
-    )
-    .expect("plan")
+    common::plan(mesh, 3)
 }
 
 /// Every record of an evaluation, in order, as text (`{:?}` of f64 is exact).

@@ -7,6 +7,8 @@
 //! mesh. A test is `#[ignore]`d, naming its finding, while the finding is
 //! open.
 
+mod common;
+
 use capdiv_mesh::obj::parse_obj;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, BadEdge};
@@ -30,15 +32,7 @@ fn generic(n: usize) -> Vec<[f64; 3]> {
 /// mesh's positions and at generic ones; returns the closedness of the
 /// generic tessellation (grid 1).
 fn run(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> Result<(), BadEdge> {
-    let plan = SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            catmull_clark,
-            ..Default::default()
-        },
-    )
-    .expect("for_mesh accepts the mesh");
+    let plan = common::plan_with(mesh, depth, catmull_clark);
     assert!(
         plan.uncovered.is_empty(),
         "faces left uncovered: {:?}",

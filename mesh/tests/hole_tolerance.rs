@@ -4,23 +4,18 @@
 //! densely); a smaller tolerance never gives fewer rings; no tolerance is the
 //! fixed-depth surface, patch for patch.
 
+mod common;
+
 use capdiv::Point3;
 use capdiv_mesh::samples;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::PatchGeometry;
-use capdiv_mesh::{Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan};
+use capdiv_mesh::{Evaluator, MeshInput, PatchRecord};
 
 type Collect = CollectSurface<f64>;
 
 fn evaluate(mesh: &MeshInput, depth: u32, tolerance: Option<f64>) -> Collect {
-    let plan = SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    )
-    .expect("plan");
+    let plan = common::plan(mesh, depth);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     ev.set_hole_tolerance(tolerance);
     let mut c = Collect::default();

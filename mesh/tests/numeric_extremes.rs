@@ -7,7 +7,7 @@
 mod common;
 
 use capdiv::Point3;
-use capdiv_mesh::{samples, EvalError, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
+use capdiv_mesh::{samples, EvalError, Evaluator, MeshInput, SurfacePlan, Topology};
 use common::*;
 
 /// The samples: C²PS (pole disk, globe), EG (n = 3, 5), Catmull-Clark (n = 7),
@@ -115,14 +115,7 @@ fn scaled_samples(huge: &[i32]) {
     let (mut ok, mut err) = (0, 0);
     for (mesh_name, m) in meshes() {
         let topo = Topology::new(&m).unwrap();
-        let plan = SurfacePlan::new(
-            &topo,
-            PlanOptions {
-                depth: 3,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let plan = SurfacePlan::new(&topo, common::plan_options(3, false)).unwrap();
         for (f32_run, (max, min_pos)) in [
             (false, (f64::MAX, f64::MIN_POSITIVE)),
             (true, (f32::MAX as f64, f32::MIN_POSITIVE as f64)),
@@ -199,14 +192,7 @@ fn evaluate_all<R: capdiv::Real>(
 fn refined_mesh_overflow_is_reported_before_any_patch() {
     for (name, m) in meshes() {
         let topo = Topology::new(&m).unwrap();
-        let plan = SurfacePlan::new(
-            &topo,
-            PlanOptions {
-                depth: 3,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let plan = SurfacePlan::new(&topo, common::plan_options(3, false)).unwrap();
         for k in 5..=12 {
             let (r64, _) = evaluate_all(&plan, &scaled_to(&m, f64::MAX, k, |c| c));
             let (r32, _) = evaluate_all(&plan, &scaled_to(&m, f32::MAX.into(), k, |c| c as f32));

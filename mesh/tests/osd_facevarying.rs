@@ -14,12 +14,13 @@
 //! `fvar_linear_all_matches_at_ptex_points`); a wrong sub-face, corner order
 //! or orientation errs by ≥ 1e-2 on these UVs.
 
+mod common;
+
 #[path = "osd/mod.rs"]
 mod osd;
 
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PlanOptions,
-    SurfacePlan, SurfaceSink,
+    samples, CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, SurfaceSink,
 };
 use osd::{Job, Query};
 
@@ -138,14 +139,7 @@ fn hole_points_take_the_uv_of_the_caps_centre_in_the_patchs_face() {
     let mut checked = 0;
     for (name, m) in meshes() {
         for depth in [1, 3] {
-            let plan = SurfacePlan::for_mesh(
-                &m,
-                PlanOptions {
-                    depth,
-                    ..Default::default()
-                },
-            )
-            .unwrap();
+            let plan = common::plan(&m, depth);
             let fv = FaceVarying::new(&m, &plan).unwrap().unwrap();
             let mut sink = Patches::default();
             Evaluator::<f64>::new(&plan)
@@ -189,14 +183,7 @@ fn every_patch_carries_opensubdivs_uvs_over_its_domain() {
     let mut worst = 0.0f64;
     let mut kinds = std::collections::BTreeSet::new();
     for (name, m) in meshes() {
-        let plan = SurfacePlan::for_mesh(
-            &m,
-            PlanOptions {
-                depth: 3,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let plan = common::plan(&m, 3);
         let fv = FaceVarying::new(&m, &plan).unwrap().unwrap();
         let mut sink = Patches::default();
         Evaluator::<f64>::new(&plan)
@@ -256,14 +243,7 @@ fn polar_patches_take_their_triangles_uvs_along_the_spokes() {
     let uvs: Vec<[f64; 2]> = m.vertices.iter().map(|p| [p[0], p[1]]).collect();
     let faces = m.faces.clone();
     let m = m.with_uvs(uvs, faces);
-    let plan = SurfacePlan::for_mesh(
-        &m,
-        PlanOptions {
-            depth: 3,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let plan = common::plan(&m, 3);
     assert!(!plan.polar.is_empty(), "the disk has a pole");
     let fv = FaceVarying::new(&m, &plan).unwrap().unwrap();
     let mut sink = Patches::default();

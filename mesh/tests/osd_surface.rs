@@ -23,7 +23,7 @@ mod osd;
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
     samples, BoundaryInterpolation, CreaseMethod, EdgeCrease, Evaluator, MeshInput, PatchKind,
-    PatchRecord, PlanOptions, SurfacePlan, TriangleSubdivision, VertexCorner,
+    PatchRecord, SurfacePlan, TriangleSubdivision, VertexCorner,
 };
 use common::Collect;
 use osd::{Answer, Job, Query};
@@ -70,15 +70,8 @@ fn compare(name: &str, m: &MeshInput, depth: u32) -> Report {
 /// cap patches from OpenSubdiv's surface is returned beside (C²PS patches
 /// are not asked, see below).
 fn compare_in(name: &str, m: &MeshInput, depth: u32, cc: bool) -> (Report, f64) {
-    let plan = SurfacePlan::for_mesh(
-        m,
-        PlanOptions {
-            depth,
-            catmull_clark: cc,
-            ..Default::default()
-        },
-    )
-    .unwrap_or_else(|e| panic!("{name}: plan: {e}"));
+    let plan = SurfacePlan::for_mesh(m, common::plan_options(depth, cc))
+        .unwrap_or_else(|e| panic!("{name}: plan: {e}"));
     assert!(
         plan.uncovered.is_empty(),
         "{name}: uncovered {:?}",

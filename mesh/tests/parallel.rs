@@ -5,6 +5,8 @@
 //! on pools of 2 to 5 threads.
 #![cfg(feature = "parallel")]
 
+mod common;
+
 use capdiv::Real;
 use capdiv_mesh::samples;
 use capdiv_mesh::{
@@ -76,10 +78,7 @@ fn compare<R: Real + Send + Sync + std::fmt::Debug>(
 }
 
 fn depth(depth: u32) -> PlanOptions<'static> {
-    PlanOptions {
-        depth,
-        ..Default::default()
-    }
+    common::plan_options(depth, false)
 }
 
 fn meshes() -> Vec<(&'static str, MeshInput, PlanOptions<'static>)> {
@@ -104,11 +103,7 @@ fn meshes() -> Vec<(&'static str, MeshInput, PlanOptions<'static>)> {
         (
             "catmull-clark",
             samples::feature_mix(2_000),
-            PlanOptions {
-                depth: 3,
-                catmull_clark: true,
-                ..Default::default()
-            },
+            common::plan_options(3, true),
         ),
     ]
 }

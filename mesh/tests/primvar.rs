@@ -4,12 +4,14 @@
 //! positions refined as a primvar give the regular patches the evaluator
 //! emits.
 
+mod common;
+
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::Point3;
 use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, PlanOptions, SurfacePlan,
-    SurfaceSink, Unit,
+    samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, SurfacePlan, SurfaceSink,
+    Unit,
 };
 
 /// Meshes whose plans have refinement steps (the triangle and pentagon
@@ -27,14 +29,7 @@ fn meshes() -> Vec<(&'static str, MeshInput)> {
 }
 
 fn plan(m: &MeshInput) -> SurfacePlan<'static> {
-    SurfacePlan::for_mesh(
-        m,
-        PlanOptions {
-            depth: 2,
-            ..Default::default()
-        },
-    )
-    .expect("plan")
+    common::plan(m, 2)
 }
 
 /// A colour per vertex from its index: arbitrary, distinct values.

@@ -5,7 +5,7 @@
 mod common;
 
 use capdiv_mesh::obj::parse_obj;
-use capdiv_mesh::{samples, Evaluator, MeshError, MeshInput, PlanOptions, SurfacePlan, Topology};
+use capdiv_mesh::{samples, Evaluator, MeshError, MeshInput, SurfacePlan, Topology};
 use common::*;
 
 fn topo_err(obj: &str) -> MeshError {
@@ -87,13 +87,7 @@ fn pipeline(m: &MeshInput, depth: u32) -> bool {
     let Ok(t) = Topology::new(m) else {
         return false;
     };
-    let Ok(plan) = SurfacePlan::new(
-        &t,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    ) else {
+    let Ok(plan) = SurfacePlan::new(&t, common::plan_options(depth, false)) else {
         return false;
     };
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
@@ -223,14 +217,7 @@ fn f32_tracks_f64() {
     ];
     for (name, m, depth) in cases {
         let t = Topology::new(&m).unwrap();
-        let plan = SurfacePlan::new(
-            &t,
-            PlanOptions {
-                depth,
-                ..Default::default()
-            },
-        )
-        .unwrap();
+        let plan = SurfacePlan::new(&t, common::plan_options(depth, false)).unwrap();
         let mut out64 = Collect::default();
         Evaluator::<f64>::new(&plan)
             .unwrap()

@@ -3,19 +3,11 @@
 //! patches per kind, `CollectSurface` keeps,
 //! `Tee` hands each record to both.
 
-use capdiv_mesh::sinks::{CapCount, CollectSurface, PatchCounts, SurfaceStats, Tee};
-use capdiv_mesh::{samples, Evaluator, MeshInput, PatchKind, PlanOptions, Scheme, SurfacePlan};
+mod common;
 
-fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
-    SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    )
-    .expect("plan")
-}
+use capdiv_mesh::sinks::{CapCount, CollectSurface, PatchCounts, SurfaceStats, Tee};
+use capdiv_mesh::{samples, Evaluator, MeshInput, PatchKind, Scheme};
+use common::plan;
 
 /// Counts and keeps one evaluation of `mesh` at `depth`.
 fn stats_and_records(mesh: &MeshInput, depth: u32) -> (SurfaceStats, CollectSurface<f64>) {

@@ -5,29 +5,19 @@
 //! scheme, adaptive refinement with tags, open meshes), while the weld table
 //! holds a front whose size does not grow with the depth.
 
+mod common;
+
 use capdiv_mesh::samples;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{
     is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter, StreamSummary,
     StreamTessellator, TessellatingSink, Tessellation,
 };
-use capdiv_mesh::{
-    CapRecord, Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, SurfaceSink, Unit,
-};
+use capdiv_mesh::{CapRecord, Evaluator, MeshInput, PatchRecord, SurfaceSink, Unit};
+use common::plan;
 
 /// Every patch and cap, in the evaluator's order.
 type Collect = CollectSurface<f64>;
-
-fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
-    SurfacePlan::for_mesh(
-        mesh,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    )
-    .expect("plan")
-}
 
 fn patches(mesh: &MeshInput, depth: u32) -> Vec<PatchRecord<f64>> {
     let plan = plan(mesh, depth);

@@ -10,10 +10,11 @@
 //! tessellation without UVs); each output face lies in its input face's
 //! checker square; the OBJ text carries the same UVs.
 
+mod common;
+
 use capdiv_mesh::tessellate::{tessellate, write_obj, Tessellation};
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, PlanOptions,
-    SurfacePlan, SurfaceSink,
+    samples, CapRecord, Evaluator, FaceVarying, MeshInput, PatchKind, PatchRecord, SurfaceSink,
 };
 
 const NU: usize = 8;
@@ -93,14 +94,7 @@ impl SurfaceSink<f64> for Collect {
 }
 
 fn surface(m: &MeshInput) -> (Vec<PatchRecord<f64>>, FaceVarying) {
-    let plan = SurfacePlan::for_mesh(
-        m,
-        PlanOptions {
-            depth: 3,
-            ..Default::default()
-        },
-    )
-    .unwrap();
+    let plan = common::plan(m, 3);
     let fv = FaceVarying::new(m, &plan).unwrap().unwrap();
     let mut c = Collect::default();
     Evaluator::<f64>::new(&plan)

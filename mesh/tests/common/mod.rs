@@ -122,17 +122,31 @@ use capdiv_mesh::{Evaluator, MeshInput, PatchRecord, PlanOptions, SurfacePlan, T
 /// A sink that keeps every patch and cap.
 pub type Collect<R> = capdiv_mesh::sinks::CollectSurface<R>;
 
+/// The options of a plan to `depth`: every cap Catmull-Clark when
+/// `catmull_clark`, no EG tables.
+pub fn plan_options(depth: u32, catmull_clark: bool) -> PlanOptions<'static> {
+    PlanOptions {
+        depth,
+        catmull_clark,
+        ..Default::default()
+    }
+}
+
+/// `SurfacePlan::for_mesh` at `depth` with the default caps (the test fails
+/// when the mesh is refused).
+pub fn plan(mesh: &MeshInput, depth: u32) -> SurfacePlan<'static> {
+    plan_with(mesh, depth, false)
+}
+
+/// [`plan`], every cap Catmull-Clark when `catmull_clark`.
+pub fn plan_with(mesh: &MeshInput, depth: u32, catmull_clark: bool) -> SurfacePlan<'static> {
+    SurfacePlan::for_mesh(mesh, plan_options(depth, catmull_clark)).expect("plan")
+}
+
 /// Plan (at `depth`) and evaluate a mesh in f64.
 pub fn surface(mesh: &MeshInput, depth: u32) -> (SurfacePlan<'static>, Collect<f64>) {
     let t = Topology::new(mesh).expect("valid mesh");
-    let plan = SurfacePlan::new(
-        &t,
-        PlanOptions {
-            depth,
-            ..Default::default()
-        },
-    )
-    .expect("plan");
+    let plan = SurfacePlan::new(&t, plan_options(depth, false)).expect("plan");
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
     ev.evaluate(&mesh.vertices, &mut c).expect("evaluate");
@@ -350,15 +364,7 @@ pub fn plan_and_evaluate(
     depth: u32,
     catmull_clark: bool,
 ) -> (SurfacePlan<'static>, Collect<f64>) {
-    let plan = SurfacePlan::for_mesh(
-        m,
-        PlanOptions {
-            depth,
-            catmull_clark,
-            ..Default::default()
-        },
-    )
-    .expect("plan");
+    let plan = plan_with(m, depth, catmull_clark);
     assert!(plan.uncovered.is_empty(), "uncovered {:?}", plan.uncovered);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
     let mut c = Collect::default();
