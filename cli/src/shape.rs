@@ -14,6 +14,12 @@
 //! | mesh | default, `c2ps`, `eg` | `capdiv surface`'s pipeline (C²PS at poles, EG at n = 3, 5, CC elsewhere) |
 //! | mesh | `catmull-clark` | the same with `PlanOptions::catmull_clark` |
 //!
+//! The c-net's Catmull-Clark cap comes from
+//! [`capdiv_mesh::rings::catmull_clark_rings`], as a mesh's cap would. The
+//! polar rings keep their own loop (they start at level 0, with the outer
+//! region and RTS steps, which a surface cap has not), and so do the EG
+//! rings (a `dnet` input has no c-net to give them).
+//!
 //! Hole edges (the last ring's inner side): C²PS/RTS span-0 patches along
 //! `u = 0`; EG/CC piece 0 (`[½,1]×[0,½]`) along `u = 0`, piece 1 along
 //! `v = 0` (as `capdiv_mesh::evaluate` marks them).
@@ -24,7 +30,8 @@ use crate::commands::polar::Config;
 use crate::error::{CliError, Naming};
 use crate::input::{CnetInput, EgInput, Input, MeshJson, PolarInput};
 use crate::net::{valence_after, HeapStorage};
-use capdiv::{CcCap, FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
+use capdiv::{FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
+use capdiv_mesh::rings::{catmull_clark_rings, RingError, RingOptions};
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
 use capdiv_mesh::{BoundedPlan, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme};
@@ -324,29 +331,32 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     })
 }
 
-/// The kernel's Catmull-Clark cap on a c-net.
+/// The kernel's Catmull-Clark cap on a c-net, through
+/// [`capdiv_mesh::rings::catmull_clark_rings`] (rings of steps 1..M, the
+/// cap computed around its centre as in a mesh).
 fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError> {
-    let kernel = |e| CliError::kernel(name, e);
-    let net = cnet::<f64>(name, input)?;
-    let n = net.valence();
+    // The kernel's own message for a malformed c-net.
+    cnet::<f64>(name, input)?;
     let nodes: Vec<[f64; 3]> = input.sectors.iter().flatten().copied().collect();
-    let mut storage = vec![Point3::ZERO; CcCap::<f64>::storage_len(n)];
-    let mut cap = CcCap::new(input.center, &nodes, &mut storage).map_err(kernel)?;
-    let hole_point = cap.limit().finite().map_err(kernel)?.0;
-    let mut patches = Vec::new();
-    for level in 1..=depth {
-        cap.step().map_err(kernel)?;
-        for (k, p) in cap.ring_patches().enumerate() {
-            patches.push(ShapePatch::ring(
-                PatchKind::CatmullClark,
-                PatchGeometry::Cubic(p),
-                level,
-                true,
-                ring_edge_flags(RingLayout::Sectors, k, 0, level == depth),
-                hole_point,
-            ));
-        }
+    let mut out = CollectSurface::new();
+    catmull_clark_rings(input.center, &nodes, &RingOptions::new(depth), &mut out)
+        .map_err(|e| ring_err(name, e))?;
+    if let Some(e) = out.refused() {
+        return Err(CliError::out_of_memory(name, e.bytes));
     }
+    let hole_point = match out.caps.first() {
+        Some(c) if c.limit.is_finite() => c.limit.0,
+        _ => return Err(CliError::kernel(name, capdiv::Error::NonFinite)),
+    };
+    let patches = out
+        .patches
+        .into_iter()
+        .map(|patch| ShapePatch {
+            level: patch.level,
+            patch,
+            ring: true,
+        })
+        .collect();
     Ok(Shape {
         scheme: "catmull-clark",
         label: "Catmull-Clark".into(),
@@ -358,6 +368,16 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
             limit: hole_point,
         }],
     })
+}
+
+/// A ring error of a single configuration: the kernel's, or the
+/// allocation's.
+fn ring_err(name: &str, e: RingError) -> CliError {
+    match e {
+        RingError::Kernel(e) => CliError::kernel(name, e),
+        RingError::OutOfMemory { bytes } => CliError::out_of_memory(name, bytes),
+        other => CliError::Usage(format!("{name}: {other}")),
+    }
 }
 
 /// A polar configuration as a mesh ([`MeshInput::polar_disk`]).

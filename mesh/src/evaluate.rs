@@ -14,19 +14,17 @@
 use crate::chart::{Affine, FaceChart};
 use crate::error::{Indices, Names};
 use crate::facevarying::PatchUv;
-use crate::hole;
 use crate::mem;
 use crate::plan::{ExtraordinaryCapPlan, PolarPlan, Scheme, SurfacePlan, Unit};
-use crate::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
+use crate::rings::{self, RingPatch};
+use crate::tessellate::PatchGeometry;
 use alloc::boxed::Box;
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 use capdiv::bezier::bspline_to_bezier_cubic;
 use capdiv::eg::{CNet, EgSubdivision, FourierRule, PatchDomain, RuleTable};
-use capdiv::{
-    CcCap, Error, FirstStep, Point3, PolarNetBuf, PoleJet, Real, SliceStorage, TensorPatch,
-};
+use capdiv::{CcCap, Error, Point3, PolarNetBuf, PoleJet, Real, SliceStorage, TensorPatch};
 
 /// What a patch is made by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -650,70 +648,57 @@ impl<R: Real> Scratch<R> {
         let jet = PoleJet::of(&net);
         let limit = jet.limit();
         let geometry = jet.geometry().ok();
-        let mut rings = 0;
-        for m in 1..=depth {
-            net.step(if m == 1 { p.first } else { FirstStep::Plain })
-                .map_err(kernel)?;
-            let cols = net.valence();
-            let last = m == depth || {
-                let mut radius = 0.0f64;
-                if self.hole_tolerance.is_some() {
-                    for c in 0..cols {
-                        let inner = net.ring_patch(c).map_err(kernel)?;
-                        radius = radius.max(hole::edge_radius(&inner, hole::EDGE_U0, limit));
-                    }
-                }
-                hole::small_enough(radius, self.hole_tolerance)
-            };
-            // Columns of this level per input triangle.
-            let per = cols / n_in.max(1);
-            let scale = 1.0 / (1u64 << (m + p.prior_steps)) as f64;
-            for span in 0..2 {
+        let rings = rings::polar_net_rings(
+            &mut net,
+            p.first,
+            (depth, self.hole_tolerance),
+            limit,
+            &mut |ring| {
+                let m = ring.ring;
+                let cols = ring.len / 2;
+                let (span, c) = (ring.index / cols, ring.index % cols);
+                // Columns of this level per input triangle.
+                let per = cols / n_in.max(1);
+                let scale = 1.0 / (1u64 << (m + p.prior_steps)) as f64;
                 let (r0, r1) = ((2 + span) as f64 * scale, (3 + span) as f64 * scale);
-                for c in 0..cols {
-                    let patch = net.ring_patch(span * cols + c).map_err(kernel)?;
-                    let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
-                    let (v0, v1) = (
-                        ((c % per) as f64) / per as f64,
-                        ((c % per) + 1) as f64 / per as f64,
-                    );
-                    let (finer, hole) =
-                        ring_edge_flags(RingLayout::Polar, span * cols + c, 2 * cols, last);
-                    let chart = if r1 <= 1.0 || p.quads.is_empty() {
-                        FaceChart {
-                            face: tri,
-                            corner: None,
-                            map: Affine::IDENTITY,
-                        }
-                    } else {
-                        p.quads
-                            .get(c >> m)
-                            .copied()
-                            .unwrap_or(FaceChart::input(tri))
-                    };
-                    let rect = if r1 <= 1.0 {
-                        [r0, r1, v0, v1]
-                    } else {
-                        [r0 - 1.0, r1 - 1.0, v0, v1]
-                    };
+                let tri = p.triangles.get(c >> m).copied().unwrap_or(0);
+                let (v0, v1) = (
+                    ((c % per) as f64) / per as f64,
+                    ((c % per) + 1) as f64 / per as f64,
+                );
+                let chart = if r1 <= 1.0 || p.quads.is_empty() {
+                    FaceChart {
+                        face: tri,
+                        corner: None,
+                        map: Affine::IDENTITY,
+                    }
+                } else {
+                    p.quads
+                        .get(c >> m)
+                        .copied()
+                        .unwrap_or(FaceChart::input(tri))
+                };
+                let rect = if r1 <= 1.0 {
+                    [r0, r1, v0, v1]
+                } else {
+                    [r0 - 1.0, r1 - 1.0, v0, v1]
+                };
+                if let PatchGeometry::Cubic(patch) = ring.geometry {
                     sink.patch(&record(
                         PatchKind::C2ps,
                         m + p.prior_steps,
                         &chart,
                         rect,
                         moved(patch, origin),
-                        finer,
-                        hole,
+                        ring.finer,
+                        ring.hole,
                         limit + origin,
                         Some(index),
                     ));
                 }
-            }
-            if last {
-                rings = m;
-                break;
-            }
-        }
+            },
+        )
+        .map_err(kernel)?;
         sink.cap(&CapRecord {
             index,
             vertex: Some(p.vertex),
@@ -755,48 +740,50 @@ impl<R: Real> Scratch<R> {
         let nodes = &self.cnet[..6 * n];
         let depth = plan.options.depth;
         let level0 = e.level;
-        let emit = |sink: &mut dyn SurfaceSink<R>,
-                    m: u32,
-                    last: bool,
-                    k: usize,
-                    dom: PatchDomain,
-                    geometry: PatchGeometry<R>,
-                    kind: PatchKind,
-                    limit: Point3<R>| {
+        // A ring patch placed in its sector's face.
+        let place = |ring: RingPatch<R>, limit: Point3<R>| {
+            let dom = ring.domain.unwrap_or(PatchDomain {
+                sector: 0,
+                x0: 0.0,
+                y0: 0.0,
+                size: 1.0,
+            });
             let chart = e
                 .sectors
                 .get(dom.sector)
                 .copied()
                 .unwrap_or(FaceChart::input(0));
             let rect = [dom.x0, dom.x0 + dom.size, dom.y0, dom.y0 + dom.size];
-            let (finer, hole) = ring_edge_flags(RingLayout::Sectors, k, 3 * n, last);
-            let rec = match geometry {
+            let level = ring.ring + level0;
+            let (finer, hole) = (ring.finer, ring.hole);
+            let hole_point = limit + origin;
+            match ring.geometry {
                 PatchGeometry::Cubic(p) => record(
-                    kind,
-                    m + level0,
+                    ring.kind,
+                    level,
                     &chart,
                     rect,
                     moved(p, origin),
                     finer,
                     hole,
-                    limit + origin,
+                    hole_point,
                     Some(index),
                 ),
                 PatchGeometry::Quartic(p) => record(
-                    kind,
-                    m + level0,
+                    ring.kind,
+                    level,
                     &chart,
                     rect,
                     moved(p, origin),
                     finer,
                     hole,
-                    limit + origin,
+                    hole_point,
                     Some(index),
                 ),
-            };
-            sink.patch(&rec);
+            }
         };
-        match e.scheme {
+        let stop = (depth, self.hole_tolerance);
+        let (scheme, limit, rings, normal) = match e.scheme {
             Scheme::Eg => {
                 let net = CNet::new(center, nodes).map_err(kernel)?;
                 match e.table.and_then(|i| plan.options.eg_tables.get(i)) {
@@ -805,166 +792,49 @@ impl<R: Real> Scratch<R> {
                     Some(table) => {
                         let mut eg = EgSubdivision::empty();
                         eg.reset(&net, Some(*table)).map_err(kernel)?;
-                        run_eg(
-                            &mut eg,
-                            None,
-                            (depth, self.hole_tolerance, origin),
-                            sink,
-                            &emit,
-                            e,
-                            index,
-                        )?;
+                        let limit = eg.limit();
+                        let (rings, normal) = rings::eg_net_rings(&mut eg, None, stop, &mut |r| {
+                            sink.patch(&place(r, limit))
+                        })
+                        .map_err(kernel)?;
+                        (Scheme::Eg, limit, rings, normal)
                     }
                     None => {
                         self.eg.reset(&net, None).map_err(kernel)?;
                         let n = self.eg.valence();
                         let rule = eg_rules.iter().find(|r| r.valence() == n);
-                        let limits = (depth, self.hole_tolerance, origin);
-                        run_eg(&mut self.eg, rule, limits, sink, &emit, e, index)?;
+                        let limit = self.eg.limit();
+                        let (rings, normal) =
+                            rings::eg_net_rings(&mut self.eg, rule, stop, &mut |r| {
+                                sink.patch(&place(r, limit))
+                            })
+                            .map_err(kernel)?;
+                        (Scheme::Eg, limit, rings, normal)
                     }
                 }
             }
             _ => {
                 let mut cap = CcCap::new(center, nodes, &mut self.cc).map_err(kernel)?;
                 let limit = cap.limit();
-                let mut rings = 0;
-                for m in 1..=depth {
-                    cap.step().map_err(kernel)?;
-                    let last = m == depth || {
-                        let mut radius = 0.0f64;
-                        if self.hole_tolerance.is_some() {
-                            for k in (0..cap.ring_len()).filter(|k| k % 3 < 2) {
-                                let inner = cap.ring_patch(k).map_err(kernel)?;
-                                let edge = [hole::EDGE_U0, hole::EDGE_V0][k % 3];
-                                radius = radius.max(hole::edge_radius(&inner, edge, limit));
-                            }
-                        }
-                        hole::small_enough(radius, self.hole_tolerance)
-                    };
-                    for k in 0..cap.ring_len() {
-                        let patch = cap.ring_patch(k).map_err(kernel)?;
-                        let dom = cap.ring_patch_domain(k).map_err(kernel)?;
-                        emit(
-                            sink,
-                            m,
-                            last,
-                            k,
-                            dom,
-                            PatchGeometry::Cubic(patch),
-                            PatchKind::CatmullClark,
-                            limit,
-                        );
-                    }
-                    if last {
-                        rings = m;
-                        break;
-                    }
-                }
-                sink.cap(&CapRecord {
-                    index,
-                    vertex: e.vertex,
-                    face: e.face,
-                    scheme: Scheme::CatmullClark,
-                    valence: n,
-                    limit: limit + origin,
-                    normal: cap.normal().ok(),
-                    principal_curvatures: None,
-                    rings,
-                });
+                let rings =
+                    rings::cc_cap_rings(&mut cap, stop, &mut |r| sink.patch(&place(r, limit)))
+                        .map_err(kernel)?;
+                (Scheme::CatmullClark, limit, rings, cap.normal().ok())
             }
-        }
+        };
+        sink.cap(&CapRecord {
+            index,
+            vertex: e.vertex,
+            face: e.face,
+            scheme,
+            valence: n,
+            limit: limit + origin,
+            normal,
+            principal_curvatures: None,
+            rings,
+        });
         Ok(())
     }
-}
-
-/// Runs an EG cap to `depth` (through `rule`, the Fourier form of its
-/// built-in table, when given), emitting its rings and then the cap record
-/// (normal: the mean of the last ring's normals at the corners nearest the
-/// centre, one per sector). `eg` holds the c-net relative to `origin`
-/// ([`moved`]); `emit` moves the patches back, the cap's limit is moved
-/// here.
-fn run_eg<R: Real, F>(
-    eg: &mut EgSubdivision<'_, R>,
-    rule: Option<&FourierRule<'_, R>>,
-    (depth, tolerance, origin): (u32, Option<f64>, Point3<R>),
-    sink: &mut dyn SurfaceSink<R>,
-    emit: &F,
-    e: &ExtraordinaryCapPlan,
-    index: u32,
-) -> Result<(), EvalError>
-where
-    F: Fn(
-        &mut dyn SurfaceSink<R>,
-        u32,
-        bool,
-        usize,
-        PatchDomain,
-        PatchGeometry<R>,
-        PatchKind,
-        Point3<R>,
-    ),
-{
-    let kernel = |error| EvalError::Kernel {
-        cap: index,
-        vertex: e.vertex,
-        face: e.face,
-        error,
-    };
-    let limit = eg.limit();
-    let mut normal_sum = Point3::ZERO;
-    let mut rings = 0;
-    for m in 1..=depth {
-        match rule {
-            Some(rule) => eg.step_fourier(rule),
-            None => eg.step(),
-        }
-        .map_err(kernel)?;
-        let last = m == depth || {
-            let mut radius = 0.0f64;
-            if tolerance.is_some() {
-                for (k, inner) in eg.ring_patches().enumerate().filter(|(k, _)| k % 3 < 2) {
-                    let edge = [hole::EDGE_U0, hole::EDGE_V0][k % 3];
-                    radius = radius.max(hole::edge_radius(&inner, edge, limit));
-                }
-            }
-            hole::small_enough(radius, tolerance)
-        };
-        for (k, patch) in eg.ring_patches().enumerate() {
-            let dom = eg.ring_patch_domain(k).map_err(kernel)?;
-            if last && k % 3 == 0 {
-                if let Ok(nrm) = patch.normal(R::ZERO, R::ZERO) {
-                    normal_sum += nrm;
-                }
-            }
-            emit(
-                sink,
-                m,
-                last,
-                k,
-                dom,
-                PatchGeometry::Quartic(patch),
-                PatchKind::Eg,
-                limit,
-            );
-        }
-        if last {
-            rings = m;
-            break;
-        }
-    }
-    let len = normal_sum.norm();
-    sink.cap(&CapRecord {
-        index,
-        vertex: e.vertex,
-        face: e.face,
-        scheme: Scheme::Eg,
-        valence: e.sectors.len(),
-        limit: limit + origin,
-        normal: (len > R::ZERO && len.is_finite()).then(|| normal_sum * (R::ONE / len)),
-        principal_curvatures: None,
-        rings,
-    });
-    Ok(())
 }
 
 /// `patch` moved by `by`.
@@ -978,7 +848,7 @@ where
 /// the origin (the last ring's normals of a 10⁴-face torus's EG caps come
 /// out about 1.5× closer to the f64 surface; `mesh/tests/cap_precision.rs`).
 #[inline]
-fn moved<R: Real, const K: usize>(
+pub(crate) fn moved<R: Real, const K: usize>(
     mut patch: TensorPatch<R, K>,
     by: Point3<R>,
 ) -> TensorPatch<R, K> {
@@ -1037,7 +907,7 @@ fn map_corners(map: &Affine, bits: u8) -> u8 {
 /// A patch given over `rect` of a face-local frame, placed through `chart`.
 #[inline]
 #[allow(clippy::too_many_arguments)]
-fn record<R: Real, const K: usize>(
+pub(crate) fn record<R: Real, const K: usize>(
     kind: PatchKind,
     level: u32,
     chart: &FaceChart,

@@ -81,6 +81,7 @@ pub mod obj;
 #[cfg(feature = "parallel")]
 pub mod parallel;
 pub mod plan;
+pub mod rings;
 pub mod samples;
 pub mod shade;
 pub mod sinks;

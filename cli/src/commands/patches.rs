@@ -33,6 +33,13 @@
 //! in-place output's vertices and faces in the same order, each face after
 //! its vertices, the counts as the last comment line. All checks run before the first byte is written; a file output is
 //! written aside and renamed at the end, so an error leaves no partial file.
+//!
+//! The rings are made here from the kernel's nets, not by
+//! [`capdiv_mesh::rings`]: that module gives a surface cap's rings `1..=M`
+//! as placed records with their cap, while this command emits bare kernel
+//! patches from level 0 (with the outer region, RTS steps and any number of
+//! input links) and, with `--stream`, from a sweep that never holds a whole
+//! ring. The edge flags follow the same rule ([`inner_edges`]).
 
 use super::eg::{read_table, subdivision};
 use super::polar::Config;
