@@ -17,7 +17,8 @@
 #
 # Environment: KINDS (default "mixed triangles"), SETTINGS (default
 # "default depth6"), NICE (default 1: runs under `nice`), OUT (a file the
-# rows are appended to as well).
+# rows are appended to as well), EXTRA (more `capdiv surface` options for
+# every run, e.g. "--max-patches 100000000").
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -56,6 +57,8 @@ for kind in $kinds; do
         depth6) opts=(--depth 6 --tolerance none) ;;
         *) echo "unknown setting $s" >&2; exit 2 ;;
       esac
+      # shellcheck disable=SC2206 # EXTRA is split into options on purpose.
+      opts+=(${EXTRA:-})
       log=$tmp/log
       /usr/bin/time -v "${prefix[@]}" "$bin" surface --format obj -o /dev/null "${opts[@]}" "$mesh" \
         >"$log" 2>&1
