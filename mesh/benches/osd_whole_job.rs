@@ -112,7 +112,8 @@ fn ptex_bases(mesh: &MeshInput) -> (Vec<u32>, usize) {
     (bases, next as usize)
 }
 
-/// The grid indices `i` with `lo < (2i+1)/10 < hi`.
+/// The grid indices `i` with `lo ≤ (2i+1)/10 ≤ hi`: a sample on an edge two
+/// patches share is written by both (the surface is continuous there).
 fn inside(lo: f64, hi: f64) -> std::ops::Range<usize> {
     let n = 2.0 * GRID as f64;
     let first = ((n * lo - 1.0) / 2.0).ceil().max(0.0) as usize;
