@@ -747,16 +747,14 @@ impl<'t> SurfacePlan<'t> {
         self.phantoms
             .try_reserve(a.points.rows.len(), a.points.rows.entries())?;
         mem::reserve(&mut self.regular, a.patches.len())?;
-        for i in 0..a.points.rows.len() {
-            self.phantoms.push_row(a.points.rows.row(i));
-        }
-        let edges = a.edges();
+        self.phantoms.append(&a.points.rows);
+        let edges = &a.edges;
         // Level-0 patches: the analysed face's corners are its grid's inner
         // points.
         for r in self.regular.iter_mut().filter(|r| r.level == 0) {
             let c = [r.gather[5], r.gather[9], r.gather[10], r.gather[6]];
             for k in 0..4 {
-                if adaptive::finer_across(&a.points, &edges, c[k], c[(k + 1) % 4]) {
+                if adaptive::finer_across(&a.points, edges, c[k], c[(k + 1) % 4]) {
                     r.finer |= 1 << k;
                 }
             }

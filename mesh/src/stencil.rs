@@ -91,6 +91,18 @@ impl StencilTable {
         (self.offsets.len() - 2) as u32
     }
 
+    /// Appends every row of `other` (indices as they are).
+    pub fn append(&mut self, other: &StencilTable) {
+        if self.offsets.is_empty() {
+            self.offsets.push(0);
+        }
+        let shift = self.indices.len() as u32;
+        self.offsets
+            .extend(other.offsets.iter().skip(1).map(|&o| o + shift));
+        self.indices.extend_from_slice(&other.indices);
+        self.weights.extend_from_slice(&other.weights);
+    }
+
     /// Room for `rows` more rows of `entries` entries in all, reserved
     /// fallibly so that the pushes that follow do not allocate.
     pub fn try_reserve(
@@ -182,6 +194,43 @@ impl StencilTable {
                 acc.add_scaled(p, w);
             }
             out[i] = acc;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::StencilTable;
+    use alloc::vec::Vec;
+
+    fn rows(t: &StencilTable) -> Vec<Vec<(u32, f64)>> {
+        (0..t.len()).map(|i| t.row(i).collect()).collect()
+    }
+
+    /// Appending a table gives the rows that pushing them one by one gives,
+    /// behind the rows already there, including an empty row and a table
+    /// made by `Default` (no offsets yet) on either side.
+    #[test]
+    fn append_equals_pushing_the_rows_one_by_one() {
+        let mut other = StencilTable::new();
+        other.push_row([(4, 0.25), (5, 0.75)]);
+        other.push_row([]);
+        other.push_row([(1, 1.0), (1, -0.5), (9, 0.5)]);
+        for first in [StencilTable::default(), StencilTable::new(), {
+            let mut t = StencilTable::new();
+            t.push_row([(0, 1.0)]);
+            t
+        }] {
+            let mut appended = first.clone();
+            appended.append(&other);
+            appended.append(&StencilTable::default());
+            let mut pushed = first.clone();
+            for i in 0..other.len() {
+                pushed.push_row(other.row(i));
+            }
+            assert_eq!(rows(&appended), rows(&pushed));
+            assert_eq!(appended.len(), first.len() + 3);
+            assert_eq!(appended.entries(), first.entries() + 5);
         }
     }
 }

@@ -136,6 +136,9 @@ pub struct Adaptive {
     /// Patch edges met by patches two or more levels finer (the
     /// tessellation welds only one level of difference; none seen).
     pub level_jumps: usize,
+    /// The edges of the patches and of the caps' faces, by their end points
+    /// (smaller first), for [`finer_across`].
+    pub edges: HashSet<(u32, u32)>,
 }
 
 /// Options of the adaptive refinement.
@@ -167,6 +170,7 @@ pub fn cover(
         hole_conflicts: 0,
         unresolved_faces: Vec::new(),
         level_jumps: 0,
+        edges: HashSet::new(),
     };
     // Level by level: the faces of a level that need refinement are refined
     // together, inside one child level of the faces around their corners
@@ -468,7 +472,7 @@ fn mark_neighbours(out: &mut Adaptive) {
         }
     }
     out.hole_conflicts = conflicts;
-    let edges = out.edges();
+    let edges = out.collect_edges();
     let cap_edges: HashSet<(u32, u32)> = out
         .caps
         .iter()
@@ -493,12 +497,13 @@ fn mark_neighbours(out: &mut Adaptive) {
         }
     }
     out.level_jumps = jumps;
+    out.edges = edges;
 }
 
 impl Adaptive {
     /// The edges of the patches and of the caps' faces, by their end points
     /// (smaller first).
-    pub fn edges(&self) -> HashSet<(u32, u32)> {
+    fn collect_edges(&self) -> HashSet<(u32, u32)> {
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
         self.patches
             .iter()

@@ -8,6 +8,7 @@
 use super::NONE;
 use crate::stencil::StencilTable;
 use alloc::vec::Vec;
+use hashbrown::hash_map::Entry;
 use hashbrown::HashMap;
 
 /// What a point is.
@@ -50,6 +51,13 @@ impl Points {
         }
     }
 
+    /// Room for `additional` more named points without growing the name
+    /// table on the way (a refinement knows a bound: one vertex and one
+    /// edge child per corner of the faces it refines).
+    pub fn reserve(&mut self, additional: usize) {
+        self.keys.reserve(additional);
+    }
+
     /// The point named `key`, if it was made.
     pub fn get(&self, key: &Key) -> Option<u32> {
         self.keys.get(key).copied()
@@ -63,16 +71,17 @@ impl Points {
 
     /// The point named `key`, made from `row()` the first time.
     pub fn get_or_make(&mut self, key: Key, row: impl FnOnce() -> Vec<(u32, f64)>) -> u32 {
-        if let Some(&p) = self.keys.get(&key) {
-            return p;
+        match self.keys.entry(key) {
+            Entry::Occupied(made) => *made.get(),
+            Entry::Vacant(slot) => {
+                let p = self.base + self.rows.push_row(row());
+                self.parent.push(match key {
+                    Key::Vertex(v) => v,
+                    _ => NONE,
+                });
+                *slot.insert(p)
+            }
         }
-        let p = self.base + self.rows.push_row(row());
-        self.parent.push(match key {
-            Key::Vertex(v) => v,
-            _ => NONE,
-        });
-        self.keys.insert(key, p);
-        p
     }
 
     /// The point `p` descends from as a vertex child, child of a child…:

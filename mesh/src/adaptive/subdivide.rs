@@ -98,6 +98,7 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
         corner_edge: Vec::with_capacity(16 * faces.len()),
     };
     faces_out.face_start.push(0);
+    points.reserve(faces.iter().map(|&f| m.face(f as usize).len()).sum());
     let mut edges_out = Edges::default();
     // Child edges by origin: per parent edge, the halves at its two ends;
     // per parent corner, the edge from the face point to the edge point of
