@@ -28,6 +28,42 @@ pub enum Key {
     Limit(u32),
 }
 
+/// A stencil row being built: `(point, weight)`, one entry per point.
+#[derive(Clone, Debug, Default)]
+pub struct Row(pub Vec<(u32, f64)>);
+
+impl Row {
+    /// An empty row.
+    pub fn new() -> Self {
+        Row(Vec::with_capacity(16))
+    }
+
+    /// Adds `w ×` point `p` (to its entry, if it has one).
+    pub fn add(&mut self, p: u32, w: f64) {
+        if let Some(e) = self.0.iter_mut().find(|e| e.0 == p) {
+            e.1 += w;
+        } else {
+            self.0.push((p, w));
+        }
+    }
+
+    /// Every weight times `s`.
+    pub fn scaled(mut self, s: f64) -> Self {
+        for e in &mut self.0 {
+            e.1 *= s;
+        }
+        self
+    }
+
+    /// `other`'s entries added, one by one.
+    pub fn plus(mut self, other: Row) -> Self {
+        for (p, w) in other.0 {
+            self.add(p, w);
+        }
+        self
+    }
+}
+
 /// Points numbered from `base` on, each a row over earlier points.
 #[derive(Clone, Debug)]
 pub struct Points {
@@ -38,6 +74,8 @@ pub struct Points {
     parent: Vec<u32>,
     /// Row `i` is point `base + i`.
     pub rows: StencilTable,
+    /// The row being built (kept, so that building one does not allocate).
+    scratch: Row,
 }
 
 impl Points {
@@ -48,6 +86,7 @@ impl Points {
             keys: HashMap::new(),
             parent: Vec::new(),
             rows: StencilTable::new(),
+            scratch: Row::new(),
         }
     }
 
@@ -63,18 +102,24 @@ impl Points {
         self.keys.get(key).copied()
     }
 
-    /// A new point without a name (a face's child: made once).
-    pub fn make(&mut self, row: Vec<(u32, f64)>) -> u32 {
+    /// A new point without a name (a face's child: made once), its row
+    /// written by `build` into an empty row.
+    pub fn make(&mut self, build: impl FnOnce(&mut Row)) -> u32 {
+        self.scratch.0.clear();
+        build(&mut self.scratch);
         self.parent.push(NONE);
-        self.base + self.rows.push_row(row)
+        self.base + self.rows.push_row(self.scratch.0.iter().copied())
     }
 
-    /// The point named `key`, made from `row()` the first time.
-    pub fn get_or_make(&mut self, key: Key, row: impl FnOnce() -> Vec<(u32, f64)>) -> u32 {
+    /// The point named `key`, its row written by `build` into an empty row
+    /// the first time.
+    pub fn get_or_make(&mut self, key: Key, build: impl FnOnce(&mut Row)) -> u32 {
         match self.keys.entry(key) {
             Entry::Occupied(made) => *made.get(),
             Entry::Vacant(slot) => {
-                let p = self.base + self.rows.push_row(row());
+                self.scratch.0.clear();
+                build(&mut self.scratch);
+                let p = self.base + self.rows.push_row(self.scratch.0.iter().copied());
                 self.parent.push(match key {
                     Key::Vertex(v) => v,
                     _ => NONE,

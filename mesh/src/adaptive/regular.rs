@@ -196,8 +196,8 @@ fn gathered_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16]> 
         is_sharp(m.edge_sharpness[m.corner_edge[first as usize + k] as usize])
     });
     let mut mirror = |near: u32, far: u32| -> u32 {
-        points.get_or_make(Key::Mirror(near, far), || {
-            alloc::vec![(near, 2.0), (far, -1.0)]
+        points.get_or_make(Key::Mirror(near, far), |row| {
+            row.0.extend([(near, 2.0), (far, -1.0)]);
         })
     };
     // Edge rows first, then the corners of the grid across the cut side.

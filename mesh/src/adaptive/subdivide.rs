@@ -23,38 +23,10 @@
 
 use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, vertex_rule, Rule};
 use super::level::{Edges, Faces, Level};
-use super::points::{Key, Points};
+use super::points::{Key, Points, Row};
 use super::NONE;
 use alloc::vec;
 use alloc::vec::Vec;
-
-/// A stencil row being built: `(point, weight)`, one entry per point.
-struct Row(Vec<(u32, f64)>);
-
-impl Row {
-    fn new() -> Self {
-        Row(Vec::with_capacity(16))
-    }
-    fn add(&mut self, p: u32, w: f64) {
-        if let Some(e) = self.0.iter_mut().find(|e| e.0 == p) {
-            e.1 += w;
-        } else {
-            self.0.push((p, w));
-        }
-    }
-    fn scaled(mut self, s: f64) -> Self {
-        for e in &mut self.0 {
-            e.1 *= s;
-        }
-        self
-    }
-    fn plus(mut self, other: Row) -> Self {
-        for (p, w) in other.0 {
-            self.add(p, w);
-        }
-        self
-    }
-}
 
 /// Adds `w ×` face `f`'s centroid to `row`.
 fn add_centroid(m: &Level, f: usize, w: f64, row: &mut Row) {
@@ -210,9 +182,7 @@ fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
 
 /// The face point of `f` (a new point: [`subdivide`] makes each face's once).
 pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
-    let mut row = Row::new();
-    add_centroid(m, f, 1.0, &mut row);
-    points.make(row.0)
+    points.make(|row| add_centroid(m, f, 1.0, row))
 }
 
 /// The edge point of `e`.
@@ -224,15 +194,13 @@ pub fn edge_point(m: &Level, e: usize, rules: Rules, points: &mut Points) -> u32
         0 => Key::Edge(pa.min(pb), pa.max(pb)),
         k => Key::EdgeInstance(pa.min(pb), pa.max(pb), k),
     };
-    points.get_or_make(key, || {
+    points.get_or_make(key, |row| {
         let s = m.edge_sharpness[e];
-        let mid = || {
-            let mut r = Row::new();
+        let mid = |r: &mut Row| {
             r.add(pa, 0.5);
             r.add(pb, 0.5);
-            r
         };
-        let smooth = || {
+        let smooth = |r: &mut Row| {
             let corners = m.edge_corners(e);
             let triangle = |c: u32| m.face(m.corner_face[c as usize] as usize).len() == 3;
             let (wv, wf) = if rules.smooth_triangles
@@ -247,33 +215,33 @@ pub fn edge_point(m: &Level, e: usize, rules: Rules, points: &mut Points) -> u32
             } else {
                 (0.25, 0.25)
             };
-            let mut r = Row::new();
             r.add(pa, wv);
             r.add(pb, wv);
             for &c in corners {
-                add_centroid(m, m.corner_face[c as usize] as usize, wf, &mut r);
+                add_centroid(m, m.corner_face[c as usize] as usize, wf, r);
             }
-            r
         };
         if !is_sharp(s) {
-            return smooth().0;
+            return smooth(row);
         }
         let both_sharp = m.edge_vertices[e]
             .iter()
             .all(|&end| is_sharp(child_edge_sharpness(s, chaikin, around(m, end as usize))));
         if both_sharp {
-            return mid().0;
+            return mid(row);
         }
         let w = f64::from(s);
-        mid().scaled(w).plus(smooth().scaled(1.0 - w)).0
+        let (mut sharp, mut smoothed) = (Row::new(), Row::new());
+        mid(&mut sharp);
+        smooth(&mut smoothed);
+        *row = sharp.scaled(w).plus(smoothed.scaled(1.0 - w));
     })
 }
 
-/// The mask of rule `rule` at `v` (`sharp[i]`: whether edge `i` of `v` counts
-/// as sharp for the crease pair).
-fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool]) -> Row {
+/// Adds the mask of rule `rule` at `v` to `r` (`sharp[i]`: whether edge `i`
+/// of `v` counts as sharp for the crease pair).
+fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool], r: &mut Row) {
     let pv = m.point[v];
-    let mut r = Row::new();
     match rule {
         Rule::Smooth | Rule::Dart => {
             let edges = m.vertex_edges(v);
@@ -286,7 +254,7 @@ fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool]) -> Row {
                 );
             }
             for &c in m.vertex_corners(v) {
-                add_centroid(m, m.corner_face[c as usize] as usize, 1.0 / (n * n), &mut r);
+                add_centroid(m, m.corner_face[c as usize] as usize, 1.0 / (n * n), r);
             }
         }
         Rule::Crease => {
@@ -299,12 +267,11 @@ fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool]) -> Row {
         }
         Rule::Corner => r.add(pv, 1.0),
     }
-    r
 }
 
 /// The vertex point of `v`.
 pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> u32 {
-    points.get_or_make(Key::Vertex(m.point[v]), || {
+    points.get_or_make(Key::Vertex(m.point[v]), |row| {
         let edges = m.vertex_edges(v);
         if m.vertex_sharpness[v] == 0.0
             && edges
@@ -312,7 +279,7 @@ pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> 
                 .all(|&e| !is_sharp(m.edge_sharpness[e as usize]))
         {
             // Smooth or dart now, and so in the child: no sharp edge pair.
-            return vertex_mask(m, v, Rule::Smooth, &[]).0;
+            return vertex_mask(m, v, Rule::Smooth, &[], row);
         }
         let parent: Vec<f32> = edges
             .iter()
@@ -323,9 +290,9 @@ pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> 
             m.vertex_sharpness[v],
             p_sharp.iter().filter(|&&s| s).count(),
         );
-        let p_mask = vertex_mask(m, v, p_rule, &p_sharp);
+        vertex_mask(m, v, p_rule, &p_sharp, row);
         if matches!(p_rule, Rule::Smooth | Rule::Dart) {
-            return p_mask.0;
+            return;
         }
         let child: Vec<f32> = parent
             .iter()
@@ -335,15 +302,17 @@ pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> 
         let cv = decay(m.vertex_sharpness[v]);
         let c_rule = vertex_rule(cv, c_sharp.iter().filter(|&&s| s).count());
         if c_rule == p_rule {
-            return p_mask.0;
+            return;
         }
-        let c_mask = vertex_mask(m, v, c_rule, &c_sharp);
+        let p_mask = core::mem::take(row);
+        let mut c_mask = Row::new();
+        vertex_mask(m, v, c_rule, &c_sharp, &mut c_mask);
         let w = fractional_weight(
             m.vertex_sharpness[v],
             cv,
             parent.iter().copied().zip(child.iter().copied()),
         );
-        p_mask.scaled(w).plus(c_mask.scaled(1.0 - w)).0
+        *row = p_mask.scaled(w).plus(c_mask.scaled(1.0 - w));
     })
 }
 
@@ -397,5 +366,5 @@ pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
         }
         Rule::Corner => row.add(pv, 1.0),
     }
-    Some(points.get_or_make(Key::Limit(pv), || row.0))
+    Some(points.get_or_make(Key::Limit(pv), |made| *made = row))
 }
