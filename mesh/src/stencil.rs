@@ -103,6 +103,15 @@ impl StencilTable {
         self.weights.extend_from_slice(&other.weights);
     }
 
+    /// Room for `rows` more rows of `entries` entries in all (amortised
+    /// growth, as [`Vec::reserve`]).
+    pub fn reserve(&mut self, rows: usize, entries: usize) {
+        let first = usize::from(self.offsets.is_empty());
+        self.offsets.reserve(rows + first);
+        self.indices.reserve(entries);
+        self.weights.reserve(entries);
+    }
+
     /// Room for `rows` more rows of `entries` entries in all, reserved
     /// fallibly so that the pushes that follow do not allocate.
     pub fn try_reserve(

@@ -90,11 +90,14 @@ impl Points {
         }
     }
 
-    /// Room for `additional` more named points without growing the name
-    /// table on the way (a refinement knows a bound: one vertex and one
+    /// Room for `points` more points, `named` of them named, `entries`
+    /// row entries in all, without growing the tables on the way (a
+    /// refinement knows bounds: a point per face, and one vertex and one
     /// edge child per corner of the faces it refines).
-    pub fn reserve(&mut self, additional: usize) {
-        self.keys.reserve(additional);
+    pub fn reserve(&mut self, points: usize, named: usize, entries: usize) {
+        self.keys.reserve(named);
+        self.parent.reserve(points);
+        self.rows.reserve(points, entries);
     }
 
     /// The point named `key`, if it was made.

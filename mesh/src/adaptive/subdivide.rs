@@ -70,7 +70,15 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
         corner_edge: Vec::with_capacity(16 * faces.len()),
     };
     faces_out.face_start.push(0);
-    points.reserve(faces.iter().map(|&f| m.face(f as usize).len()).sum());
+    let corners: usize = faces.iter().map(|&f| m.face(f as usize).len()).sum();
+    // Face points of about 4 entries, edge and vertex points of about 6
+    // and 9 (at valence 4), roughly a quarter and a half as many as
+    // corners.
+    points.reserve(
+        faces.len() + 2 * corners,
+        corners,
+        4 * faces.len() + 6 * corners,
+    );
     let mut edges_out = Edges::default();
     // Child edges by origin: per parent edge, the halves at its two ends;
     // per parent corner, the edge from the face point to the edge point of
