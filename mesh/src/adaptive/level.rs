@@ -497,13 +497,14 @@ impl Level {
             }
             e_count += 1;
             if f_count < nf {
-                let faces: Vec<usize> = edge_faces(e_next).collect();
-                match faces[..] {
-                    [] => return false,
-                    [g] if g == f => return false,
-                    _ => {}
-                }
-                f = faces[usize::from(faces[0] == f)];
+                let mut faces = edge_faces(e_next);
+                let first = match (faces.next(), faces.next()) {
+                    (None, _) => return false,
+                    (Some(g), None) if g == f => return false,
+                    (Some(g), second) if g == f => second,
+                    (g, _) => g,
+                };
+                f = first.unwrap_or(f);
                 k = (0..self.face(f).len())
                     .position(|i| face_edge(f, i) == e_next)
                     .unwrap_or(0);
