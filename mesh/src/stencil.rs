@@ -91,6 +91,18 @@ impl StencilTable {
         (self.offsets.len() - 2) as u32
     }
 
+    /// [`StencilTable::push_row`] of a row given as a slice (one copy per
+    /// array, no per-entry growth check).
+    pub fn push_slice(&mut self, entries: &[(u32, f64)]) -> u32 {
+        if self.offsets.is_empty() {
+            self.offsets.push(0);
+        }
+        self.indices.extend(entries.iter().map(|e| e.0));
+        self.weights.extend(entries.iter().map(|e| e.1));
+        self.offsets.push(self.indices.len() as u32);
+        (self.offsets.len() - 2) as u32
+    }
+
     /// Appends every row of `other` (indices as they are).
     pub fn append(&mut self, other: &StencilTable) {
         if self.offsets.is_empty() {
@@ -216,7 +228,8 @@ mod tests {
         (0..t.len()).map(|i| t.row(i).collect()).collect()
     }
 
-    /// Appending a table gives the rows that pushing them one by one gives,
+    /// Appending a table gives the rows that pushing them one by one gives
+    /// (from iterators and from slices),
     /// behind the rows already there, including an empty row and a table
     /// made by `Default` (no offsets yet) on either side.
     #[test]
@@ -224,7 +237,7 @@ mod tests {
         let mut other = StencilTable::new();
         other.push_row([(4, 0.25), (5, 0.75)]);
         other.push_row([]);
-        other.push_row([(1, 1.0), (1, -0.5), (9, 0.5)]);
+        other.push_slice(&[(1, 1.0), (1, -0.5), (9, 0.5)]);
         for first in [StencilTable::default(), StencilTable::new(), {
             let mut t = StencilTable::new();
             t.push_row([(0, 1.0)]);

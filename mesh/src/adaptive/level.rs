@@ -118,7 +118,8 @@ impl Level {
         let mut face_count: Vec<u32> = Vec::new();
         let mut last_face: Vec<u32> = Vec::new();
         // The first edge made between two vertices, and how many.
-        let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+        // (A closed mesh has an edge per two corners.)
+        let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(nc / 2);
         let mut instance: Vec<u32> = Vec::new();
         for (f, vs) in faces.iter().enumerate() {
             let f = f as u32;
@@ -321,12 +322,24 @@ impl Level {
 
     /// Whether edge `e` is manifold: not tagged non-manifold, two faces
     /// running it in opposite directions, two distinct ends.
+    ///
+    /// An edge with two corners that is not tagged runs between two vertices
+    /// in opposite directions: [`Level::new`] tags a degenerate edge, a
+    /// face running an edge twice and a second face running it the same
+    /// way, and a refined level's edges inherit the tag or lie inside a
+    /// parent face (two child faces, opposite ways), so the tag and the
+    /// corner count tell.
     pub fn edge_is_manifold(&self, e: usize) -> bool {
-        let cs = self.edge_corners(e);
-        !self.edge_nonmanifold[e] && cs.len() == 2 && {
-            let [a, b] = self.edge_vertices[e];
-            a != b && self.corner_vertex[cs[0] as usize] != self.corner_vertex[cs[1] as usize]
-        }
+        let two = self.edge_corner_start[e + 1] - self.edge_corner_start[e] == 2;
+        let manifold = two && !self.edge_nonmanifold[e];
+        debug_assert!(
+            !manifold || {
+                let cs = self.edge_corners(e);
+                let [a, b] = self.edge_vertices[e];
+                a != b && self.corner_vertex[cs[0] as usize] != self.corner_vertex[cs[1] as usize]
+            }
+        );
+        manifold
     }
 
     /// Across edge `corner_edge[c]` from corner `c`'s face: the corner of the

@@ -505,12 +505,18 @@ impl Adaptive {
     /// (smaller first).
     fn collect_edges(&self) -> HashSet<(u32, u32)> {
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
-        self.patches
-            .iter()
-            .map(|p| p.corners)
-            .chain(self.caps.iter().flat_map(|c| c.faces.iter().copied()))
-            .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4])))
-            .collect()
+        let quads = self.patches.len() + self.caps.iter().map(|c| c.faces.len()).sum::<usize>();
+        // Most edges are two quads' (a flat-mapped collect would grow the
+        // set step by step).
+        let mut edges = HashSet::with_capacity(2 * quads);
+        edges.extend(
+            self.patches
+                .iter()
+                .map(|p| p.corners)
+                .chain(self.caps.iter().flat_map(|c| c.faces.iter().copied()))
+                .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4]))),
+        );
+        edges
     }
 }
 
@@ -526,10 +532,11 @@ fn halves(points: &Points, a: u32, b: u32) -> Option<((u32, u32), (u32, u32))> {
 /// Whether the edge `(a, b)` is met by two half-size patch edges.
 pub fn finer_across(points: &Points, edges: &HashSet<(u32, u32)>, a: u32, b: u32) -> bool {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
-    let (Some(ca), Some(mid)) = (
-        points.get(&Key::Vertex(a)),
-        points.get(&Key::Edge(a.min(b), a.max(b))),
-    ) else {
+    // The edge's child first: most patch edges were never refined.
+    let Some(mid) = points.get(&Key::Edge(a.min(b), a.max(b))) else {
+        return false;
+    };
+    let Some(ca) = points.get(&Key::Vertex(a)) else {
         return false;
     };
     edges.contains(&key(ca, mid))

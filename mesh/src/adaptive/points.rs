@@ -111,7 +111,7 @@ impl Points {
         self.scratch.0.clear();
         build(&mut self.scratch);
         self.parent.push(NONE);
-        self.base + self.rows.push_row(self.scratch.0.iter().copied())
+        self.base + self.rows.push_slice(&self.scratch.0)
     }
 
     /// The point named `key`, its row written by `build` into an empty row
@@ -122,7 +122,7 @@ impl Points {
             Entry::Vacant(slot) => {
                 self.scratch.0.clear();
                 build(&mut self.scratch);
-                let p = self.base + self.rows.push_row(self.scratch.0.iter().copied());
+                let p = self.base + self.rows.push_slice(&self.scratch.0);
                 self.parent.push(match key {
                     Key::Vertex(v) => v,
                     _ => NONE,

@@ -45,10 +45,9 @@ pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
         return true;
     }
     let mut other = Vec::with_capacity(8);
-    let own: Vec<Corner> = fan.clone();
     m.vertex_corners(v)
         .iter()
-        .filter(|k| !own.contains(k))
+        .filter(|k| !fan.contains(k))
         .all(|&k| sector_is_regular(m, k, &mut other))
 }
 

@@ -61,31 +61,37 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
     // Children by parent index (NONE: not made yet).
     let mut vchild = vec![NONE; m.num_vertices()];
     let mut echild = vec![NONE; m.edge_vertices.len()];
-    let mut point: Vec<u32> = Vec::new();
-    let mut vsharp: Vec<f32> = Vec::new();
+    // Bounds: a child face per corner; a point per face, vertex and edge
+    // (at most one of each per corner); two half edges per parent edge and
+    // one edge inside the face per corner.
+    let corners: usize = faces.iter().map(|&f| m.face(f as usize).len()).sum();
+    let max_points = faces.len() + 2 * corners;
+    let mut point: Vec<u32> = Vec::with_capacity(max_points);
+    let mut vsharp: Vec<f32> = Vec::with_capacity(max_points);
     let mut faces_out = Faces {
-        face_start: Vec::with_capacity(4 * faces.len() + 1),
-        corner_vertex: Vec::with_capacity(16 * faces.len()),
-        corner_face: Vec::with_capacity(16 * faces.len()),
-        corner_edge: Vec::with_capacity(16 * faces.len()),
+        face_start: Vec::with_capacity(corners + 1),
+        corner_vertex: Vec::with_capacity(4 * corners),
+        corner_face: Vec::with_capacity(4 * corners),
+        corner_edge: Vec::with_capacity(4 * corners),
     };
     faces_out.face_start.push(0);
-    let corners: usize = faces.iter().map(|&f| m.face(f as usize).len()).sum();
     // Face points of about 4 entries, edge and vertex points of about 6
     // and 9 (at valence 4), roughly a quarter and a half as many as
     // corners.
-    points.reserve(
-        faces.len() + 2 * corners,
-        corners,
-        4 * faces.len() + 6 * corners,
-    );
-    let mut edges_out = Edges::default();
+    points.reserve(max_points, corners, 4 * faces.len() + 6 * corners);
+    let max_edges = 3 * corners;
+    let mut edges_out = Edges {
+        vertices: Vec::with_capacity(max_edges),
+        sharpness: Vec::with_capacity(max_edges),
+        nonmanifold: Vec::with_capacity(max_edges),
+        instance: Vec::new(),
+    };
     // Child edges by origin: per parent edge, the halves at its two ends;
     // per parent corner, the edge from the face point to the edge point of
     // the corner's edge.
     let mut edge_child = vec![[NONE; 2]; m.edge_vertices.len()];
     let mut face_child = vec![NONE; m.corner_vertex.len()];
-    let mut holes = Vec::with_capacity(4 * faces.len());
+    let mut holes = Vec::with_capacity(corners);
     let mut first = Vec::with_capacity(faces.len());
 
     let new_vertex = |p: u32, s: f32, point: &mut Vec<u32>, vsharp: &mut Vec<f32>| -> u32 {
