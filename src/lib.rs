@@ -64,7 +64,7 @@ pub mod real;
 pub mod trig;
 
 pub use bezier::{
-    BicubicPatch, BiquarticPatch, PatchPoint, SurfaceGeometry, SurfaceJet, TensorPatch,
+    BicubicPatch, BiquarticPatch, IsoCurve, PatchPoint, SurfaceGeometry, SurfaceJet, TensorPatch,
 };
 pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};

@@ -47,6 +47,8 @@ fn check<const K: usize>() {
             (1.0, 0.25),
         ] {
             let got = p.evaluate(u, v).unwrap();
+            // The same point sampled along the line v = const.
+            assert_eq!(p.iso_v(v).unwrap().evaluate(u), Ok(got));
             let (mut x, mut xu, mut xv) = (Point3::ZERO, Point3::ZERO, Point3::ZERO);
             for i in 0..K {
                 for j in 0..K {
@@ -89,6 +91,56 @@ fn evaluation_rejects_parameters_outside_the_domain() {
     ] {
         assert_eq!(p.evaluate(u, v), Err(Error::OutOfDomain));
     }
+}
+
+#[test]
+fn iso_curves_sample_a_grid_as_pointwise_evaluation_does() {
+    // A grid sampled line by line (one reduction along v per line) is the
+    // documented fast path for tessellation; it must give what `evaluate`
+    // gives at every point, bit for bit, in both precisions.
+    let params = [0.0, 0.125, 1.0 / 3.0, 0.5, 0.8, 1.0];
+    for seed in 0..4 {
+        let p = patch::<5>(seed);
+        let p32 = TensorPatch::<f32, 5> {
+            points: p
+                .points
+                .map(|row| row.map(|q| Point3(q.0.map(|x| (x * 1e3 + 7e3) as f32)))),
+        };
+        for &v in &params {
+            let line = p.iso_v(v).unwrap();
+            let line32 = p32.iso_v(v as f32).unwrap();
+            assert_eq!(line.v(), v);
+            for &u in &params {
+                assert_eq!(line.evaluate(u), p.evaluate(u, v));
+                assert_eq!(line32.evaluate(u as f32), p32.evaluate(u as f32, v as f32));
+            }
+        }
+    }
+}
+
+#[test]
+fn iso_curves_reject_parameters_outside_the_domain() {
+    let p = patch::<4>(2);
+    for t in [-0.1, 1.1, f64::NAN, f64::INFINITY] {
+        assert_eq!(p.iso_v(t).err(), Some(Error::OutOfDomain));
+        assert_eq!(p.iso_v(0.5).unwrap().evaluate(t), Err(Error::OutOfDomain));
+    }
+}
+
+#[test]
+fn iso_curves_of_a_patch_spanning_more_than_f32_take_the_evaluation_about_zero() {
+    // Differences of ±3e38 overflow f32: evaluation relative to the first
+    // point is not finite, so the point is evaluated again about zero, the
+    // same way as `evaluate` does, and is finite (the Bernstein weights
+    // keep every partial sum within range at the corner u = v = 0).
+    let mut points = [[Point3::new(0.0f32, 0.0, 0.0); 4]; 4];
+    points[0][0] = Point3::new(-3e38, 0.0, 0.0);
+    points[3][3] = Point3::new(3e38, 1.0, 1.0);
+    let p = TensorPatch::<f32, 4> { points };
+    let line = p.iso_v(0.0).unwrap();
+    let got = line.evaluate(0.0).unwrap();
+    assert_eq!(Ok(got), p.evaluate(0.0, 0.0));
+    assert_eq!(got.position, Point3::new(-3e38, 0.0, 0.0));
 }
 
 #[test]

@@ -137,15 +137,20 @@ impl<R: Real> GridSink<'_, R> {
         let [u0, u1, v0, v1] = p.domain;
         let n = 2.0 * GRID as f64;
         let base = ptex * GRID * GRID;
-        for i in inside(u0, u1) {
-            let s = R::from_f64(((2 * i + 1) as f64 / n - u0) / (u1 - u0));
-            for j in inside(v0, v1) {
-                let t = R::from_f64(((2 * j + 1) as f64 / n - v0) / (v1 - v0));
-                let o = &mut self.out[base + GRID * i + j];
-                if let Ok(x) = g.evaluate(s, t) {
+        let rows = inside(u0, u1);
+        let mut s = [R::ZERO; GRID];
+        for i in rows.clone() {
+            s[i] = R::from_f64(((2 * i + 1) as f64 / n - u0) / (u1 - u0));
+        }
+        // Line by line: one reduction along v per grid column.
+        for j in inside(v0, v1) {
+            let t = R::from_f64(((2 * j + 1) as f64 / n - v0) / (v1 - v0));
+            let Ok(line) = g.iso_v(t) else { continue };
+            for i in rows.clone() {
+                if let Ok(x) = line.evaluate(s[i]) {
                     let nrm = x.normal().map_or([R::ZERO; 3], |n| n.0);
                     let q = x.position.0;
-                    *o = [q[0], q[1], q[2], nrm[0], nrm[1], nrm[2]];
+                    self.out[base + GRID * i + j] = [q[0], q[1], q[2], nrm[0], nrm[1], nrm[2]];
                 }
             }
         }

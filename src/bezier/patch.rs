@@ -83,39 +83,26 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
 
     /// Position and partials at `(u, v) ∈ [0,1]²`; [`Error::OutOfDomain`] otherwise.
     /// de Casteljau's algorithm on the control points relative to the first
-    /// one (`origin`), the position shifted back at the end.
+    /// one (`origin`), the position shifted back at the end: the rows are
+    /// reduced along `v` ([`TensorPatch::iso_v`]), then the curve along `u`.
     pub fn evaluate(&self, u: R, v: R) -> Result<PatchPoint<R>, Error> {
-        let inside = |t: R| t.is_finite() && t >= R::ZERO && t <= R::ONE;
-        if !inside(u) || !inside(v) {
+        if !in_unit(u) || !in_unit(v) {
             return Err(Error::OutOfDomain);
         }
-        let local = self.evaluate_about(self.origin(), u, v);
-        // One test for the nine coordinates: their sum is finite only if
-        // each is (a sum that overflows merely takes the slower way).
-        let sum = local.position + local.du + local.dv;
-        if (sum.0[0] + sum.0[1] + sum.0[2]).is_finite() {
-            Ok(local)
-        } else {
-            Ok(self.evaluate_about(Point3::ZERO, u, v))
-        }
+        Ok(IsoCurve::about(self, self.origin(), v).at_or_about_zero(u))
     }
 
-    /// de Casteljau on the points relative to `origin`, shifted back.
-    fn evaluate_about(&self, origin: Point3<R>, u: R, v: R) -> PatchPoint<R> {
-        let mut rows = [Point3::ZERO; K];
-        let mut rows_dv = [Point3::ZERO; K];
-        for i in 0..K {
-            let (p, d) = casteljau(&self.points[i].map(|p| p - origin), v);
-            rows[i] = p;
-            rows_dv[i] = d;
+    /// The patch along the line `v = const` (`v ∈ [0,1]`, else
+    /// [`Error::OutOfDomain`]): the `K` rows reduced by de Casteljau along
+    /// `v` once, so each [`IsoCurve::evaluate`] on it costs two curve
+    /// evaluations instead of `K + 2`. Sampling a grid line by line this
+    /// way gives, bit for bit, what [`TensorPatch::evaluate`] gives at each
+    /// point (it is the same sequence of operations).
+    pub fn iso_v(&self, v: R) -> Result<IsoCurve<'_, R, K>, Error> {
+        if !in_unit(v) {
+            return Err(Error::OutOfDomain);
         }
-        let (position, du) = casteljau(&rows, u);
-        let (dv, _) = casteljau(&rows_dv, u);
-        PatchPoint {
-            position: position + origin,
-            du,
-            dv,
-        }
+        Ok(IsoCurve::about(self, self.origin(), v))
     }
 
     /// Position at `(u, v)`.
@@ -126,5 +113,82 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
     /// Unit normal at `(u, v)`.
     pub fn normal(&self, u: R, v: R) -> Result<Point3<R>, Error> {
         self.evaluate(u, v)?.normal()
+    }
+}
+
+/// `t ∈ [0, 1]` (and not NaN).
+fn in_unit<R: Real>(t: R) -> bool {
+    t.is_finite() && t >= R::ZERO && t <= R::ONE
+}
+
+/// A [`TensorPatch`] along one line `v = const`, made by
+/// [`TensorPatch::iso_v`]: the curve in `u` through the line and the curve
+/// of its `∂/∂v`, each `K` points relative to the patch's origin.
+#[derive(Clone, Copy, Debug)]
+pub struct IsoCurve<'a, R, const K: usize> {
+    patch: &'a TensorPatch<R, K>,
+    origin: Point3<R>,
+    v: R,
+    rows: [Point3<R>; K],
+    rows_dv: [Point3<R>; K],
+}
+
+impl<'a, R: Real, const K: usize> IsoCurve<'a, R, K> {
+    /// de Casteljau along `v` on each row of points relative to `origin`.
+    fn about(patch: &'a TensorPatch<R, K>, origin: Point3<R>, v: R) -> Self {
+        let mut rows = [Point3::ZERO; K];
+        let mut rows_dv = [Point3::ZERO; K];
+        for i in 0..K {
+            let (p, d) = casteljau(&patch.points[i].map(|p| p - origin), v);
+            rows[i] = p;
+            rows_dv[i] = d;
+        }
+        IsoCurve {
+            patch,
+            origin,
+            v,
+            rows,
+            rows_dv,
+        }
+    }
+
+    /// The line's `v`.
+    pub fn v(&self) -> R {
+        self.v
+    }
+
+    /// Position and partials at `(u, v)`, `u ∈ [0, 1]` (else
+    /// [`Error::OutOfDomain`]): bit for bit [`TensorPatch::evaluate`]`(u, v)`.
+    pub fn evaluate(&self, u: R) -> Result<PatchPoint<R>, Error> {
+        if !in_unit(u) {
+            return Err(Error::OutOfDomain);
+        }
+        Ok(self.at_or_about_zero(u))
+    }
+
+    /// de Casteljau along `u` about the origin; where a coordinate is not
+    /// finite (the differences overflowed: the points span more than the
+    /// scalar's range), the whole evaluation again about zero. One test for
+    /// the nine coordinates: their sum is finite only if each is (a sum
+    /// that overflows merely takes the slower way).
+    fn at_or_about_zero(&self, u: R) -> PatchPoint<R> {
+        let local = self.at(u);
+        let sum = local.position + local.du + local.dv;
+        if (sum.0[0] + sum.0[1] + sum.0[2]).is_finite() {
+            local
+        } else {
+            IsoCurve::about(self.patch, Point3::ZERO, self.v).at(u)
+        }
+    }
+
+    /// de Casteljau along `u`, the position shifted back by the origin.
+    fn at(&self, u: R) -> PatchPoint<R> {
+        let (position, du) = casteljau(&self.rows, u);
+        let (dv, _) = casteljau(&self.rows_dv, u);
+        PatchPoint {
+            position: position + self.origin,
+            du,
+            dv,
+        }
     }
 }

@@ -114,6 +114,10 @@ pub struct PatchLayout {
     pub samples: Vec<SampleAt>,
     /// The faces, in indices into `samples`.
     pub faces: Vec<Face>,
+    /// The [`SampleAt::Lattice`] samples' indices ordered by their `j` (and
+    /// in sample order within one `j`): sampled in this order, a patch is
+    /// reduced along `v` once per line ([`capdiv::TensorPatch::iso_v`]).
+    pub lines: Vec<u32>,
 }
 
 impl PatchLayout {
@@ -145,6 +149,7 @@ impl PatchLayout {
         self.hole = hole;
         self.samples.clear();
         self.faces.clear();
+        self.lines.clear();
         let side = n + 1;
         let lattice = |i: usize, j: usize| SampleAt::Lattice(i as u32, j as u32);
         for a in 0..side {
@@ -250,6 +255,18 @@ impl PatchLayout {
                 }
             }
         }
+        self.lines.extend(
+            self.samples
+                .iter()
+                .enumerate()
+                .filter(|(_, at)| matches!(at, SampleAt::Lattice(..)))
+                .map(|(k, _)| k as u32),
+        );
+        let samples = &self.samples;
+        self.lines.sort_by_key(|&k| match samples[k as usize] {
+            SampleAt::Lattice(_, j) => j,
+            SampleAt::HolePoint => u32::MAX,
+        });
     }
 
     /// The parameters `(u, v)` of a [`SampleAt::Lattice`] sample, in `f64`
@@ -269,6 +286,30 @@ impl PatchLayout {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn lines_hold_every_lattice_sample_once_ordered_by_v() {
+        for (n, split, hole) in [
+            (1, 0, 0),
+            (4, 0b1111, 0),
+            (3, 0b0101, 0b0010),
+            (2, 0b1010, 0b1001),
+        ] {
+            let mut layout = PatchLayout::default();
+            layout.build(n, split, hole);
+            let lattice: Vec<u32> = (0..layout.samples.len() as u32)
+                .filter(|&k| matches!(layout.samples[k as usize], SampleAt::Lattice(..)))
+                .collect();
+            let mut seen = layout.lines.clone();
+            seen.sort_unstable();
+            assert_eq!(seen, lattice, "n {n} split {split:04b} hole {hole:04b}");
+            let j = |k: &u32| match layout.samples[*k as usize] {
+                SampleAt::Lattice(_, j) => j,
+                SampleAt::HolePoint => unreachable!("hole points are not on lines"),
+            };
+            assert!(layout.lines.windows(2).all(|w| j(&w[0]) <= j(&w[1])));
+        }
+    }
 
     #[test]
     fn halving_sampling_halves_the_segments_level_by_level_down_to_one() {

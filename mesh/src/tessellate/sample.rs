@@ -8,7 +8,7 @@ use super::PatchGeometry;
 use crate::evaluate::PatchRecord;
 use crate::facevarying::PatchUv;
 use alloc::vec::Vec;
-use capdiv::{Point3, Real, TensorPatch};
+use capdiv::{IsoCurve, Point3, Real, TensorPatch};
 
 /// The samples and faces of the patches pushed so far.
 pub(super) struct Raw<R> {
@@ -72,30 +72,39 @@ impl<R: Real> Raw<R> {
         self.layout = layout;
     }
 
-    /// The positions and normals of `layout`'s samples of `g`.
+    /// The positions and normals of `layout`'s samples of `g`, the lattice
+    /// line by line ([`PatchLayout::lines`]: one reduction along `v` per
+    /// line, each point bit for bit `g.evaluate(u, v)`).
     fn push_samples<const K: usize>(
         &mut self,
         g: &TensorPatch<R, K>,
         p: &PatchRecord<R>,
         layout: &PatchLayout,
     ) {
-        for &at in &layout.samples {
-            match at {
-                SampleAt::Lattice(i, j) => {
-                    let (u, v) = (self.params[i as usize], self.params[j as usize]);
-                    // (u, v) ∈ [0, 1]²: evaluate cannot fail with OutOfDomain.
-                    let (pos, n) = match g.evaluate(u, v) {
-                        Ok(pp) => (pp.position, pp.normal().unwrap_or(Point3::ZERO)),
-                        Err(_) => (Point3::ZERO, Point3::ZERO),
-                    };
-                    self.positions.push(pos);
-                    self.normals.push(Some(n));
-                }
-                SampleAt::HolePoint => {
-                    self.positions.push(p.hole_point);
-                    self.normals.push(None);
-                }
+        let start = self.positions.len();
+        self.positions
+            .resize(start + layout.samples.len(), p.hole_point);
+        self.normals.resize(start + layout.samples.len(), None);
+        let mut line = None;
+        for &k in &layout.lines {
+            let SampleAt::Lattice(i, j) = layout.samples[k as usize] else {
+                continue;
+            };
+            let v = self.params[j as usize];
+            if line
+                .as_ref()
+                .is_none_or(|l: &IsoCurve<'_, R, K>| l.v() != v)
+            {
+                // v ∈ [0, 1]: iso_v and evaluate cannot fail with OutOfDomain.
+                line = g.iso_v(v).ok();
             }
+            let point = line.as_ref().map(|l| l.evaluate(self.params[i as usize]));
+            let (pos, n) = match point {
+                Some(Ok(pp)) => (pp.position, pp.normal().unwrap_or(Point3::ZERO)),
+                _ => (Point3::ZERO, Point3::ZERO),
+            };
+            self.positions[start + k as usize] = pos;
+            self.normals[start + k as usize] = Some(n);
         }
     }
 
