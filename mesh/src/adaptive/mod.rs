@@ -530,6 +530,7 @@ fn halves(points: &Points, a: u32, b: u32) -> Option<((u32, u32), (u32, u32))> {
 }
 
 /// Whether the edge `(a, b)` is met by two half-size patch edges.
+#[inline]
 pub fn finer_across(points: &Points, edges: &HashSet<(u32, u32)>, a: u32, b: u32) -> bool {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // The edge's child first: most patch edges were never refined.

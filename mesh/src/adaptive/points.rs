@@ -101,6 +101,7 @@ impl Points {
     }
 
     /// The point named `key`, if it was made.
+    #[inline]
     pub fn get(&self, key: &Key) -> Option<u32> {
         self.keys.get(key).copied()
     }
