@@ -10,8 +10,10 @@
 //!   each patch as it arrives: a patch with domain `[u0, u1] × [v0, v1]` in
 //!   its face's (or sub-quad's) square takes the grid points inside it, at
 //!   its own `((u − u0)/(u1 − u0), (v − v0)/(v1 − v0))`
-//!   ([`capdiv::TensorPatch::evaluate`]: position and both partials, normal
-//!   `∂u × ∂v` normalised). This is how `tests/osd_surface.rs` puts capdiv's
+//!   ([`capdiv::TensorPatch::iso_v`] line by line: position and both
+//!   partials, normal `∂u × ∂v` normalised; cap patches come relative to
+//!   their cap's centre, [`Evaluator::set_relative_caps`], and the sink adds
+//!   the origin to positions). This is how `tests/osd_surface.rs` puts capdiv's
 //!   patches and OpenSubdiv's ptex faces side by side. Re-evaluation is
 //!   [`Evaluator::evaluate`] with the sampling sink again, on moved
 //!   vertices.
@@ -149,7 +151,7 @@ impl<R: Real> GridSink<'_, R> {
             for i in rows.clone() {
                 if let Ok(x) = line.evaluate(s[i]) {
                     let nrm = x.normal().map_or([R::ZERO; 3], |n| n.0);
-                    let q = x.position.0;
+                    let q = (x.position + p.origin).0;
                     self.out[base + GRID * i + j] = [q[0], q[1], q[2], nrm[0], nrm[1], nrm[2]];
                 }
             }
@@ -220,6 +222,7 @@ fn whole_job<R: Real>(mesh: &MeshInput, stages: &mut [Duration; 3]) -> (Vec<[R; 
     let plan = capdiv_job_analyse(mesh);
     let t1 = Instant::now();
     let mut ev = Evaluator::<R>::new(&plan).expect("evaluator");
+    ev.set_relative_caps(true);
     let t2 = Instant::now();
     let (bases, ptex) = ptex_bases(mesh);
     let at = positions::<R>(mesh, 1.0);
@@ -302,6 +305,7 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
     });
     let plan = capdiv_job_analyse(mesh);
     let mut ev = Evaluator::<R>::new(&plan).expect("evaluator");
+    ev.set_relative_caps(true);
     let (bases, ptex) = ptex_bases(mesh);
     let moved = [positions::<R>(mesh, 1.0), positions::<R>(mesh, 1.01)];
     let mut out = vec![[R::from_f64(f64::NAN); 6]; ptex * GRID * GRID];

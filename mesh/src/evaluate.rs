@@ -75,8 +75,14 @@ pub struct PatchRecord<R> {
     pub corner: Option<u8>,
     /// `[u0, u1, v0, v1]` in the face's (or sub-quad's) square.
     pub domain: [f64; 4],
-    /// Bézier control points, oriented to the input face.
+    /// Bézier control points, oriented to the input face, relative to
+    /// [`PatchRecord::origin`].
     pub geometry: PatchGeometry<R>,
+    /// The point `geometry` is relative to: a control point is
+    /// `origin + geometry`'s point. Zero (the control points absolute)
+    /// unless the evaluator hands cap patches out relative to their cap's
+    /// centre ([`Evaluator::set_relative_caps`]).
+    pub origin: Point3<R>,
     /// Edges (bits as [`crate::tessellate::edge_bit`]) met by two patches of
     /// half this one's size: a tessellation samples them twice as finely.
     pub finer: u8,
@@ -115,6 +121,7 @@ impl<R: Real> PatchRecord<R> {
             corner: None,
             domain: [0.0, 1.0, 0.0, 1.0],
             geometry,
+            origin: Point3::ZERO,
             finer: 0,
             hole: 0,
             hole_point: Point3::ZERO,
@@ -312,6 +319,8 @@ pub(crate) struct Scratch<R: Real> {
     eg: Box<EgSubdivision<'static, R>>,
     /// A cap stops after the ring whose hole is at most this wide.
     pub(crate) hole_tolerance: Option<f64>,
+    /// Cap patches relative to their cap's centre ([`PatchRecord::origin`]).
+    pub(crate) relative_caps: bool,
 }
 
 /// The lengths of a [`Scratch`]'s buffers for `plan` (`need`: the largest
@@ -347,6 +356,7 @@ impl<R: Real> Scratch<R> {
             cc: mem::filled(cc, Point3::ZERO)?,
             eg: Box::new(EgSubdivision::empty()),
             hole_tolerance: None,
+            relative_caps: false,
         })
     }
 
@@ -421,7 +431,8 @@ impl<'p, R: Real> Evaluator<'p, R> {
     /// An evaluator for `plan` on `buffers` taken from an evaluator of the
     /// same plan ([`Self::into_buffers`]), allocating nothing; buffers sized
     /// for another plan are replaced by new ones, as [`Self::new`] sizes
-    /// them. The hole tolerance ([`Self::set_hole_tolerance`]) is kept.
+    /// them. The hole tolerance ([`Self::set_hole_tolerance`]) and
+    /// [`Self::set_relative_caps`] are kept.
     pub fn with_buffers(
         plan: &'p SurfacePlan<'p>,
         mut buffers: EvalBuffers<R>,
@@ -431,8 +442,10 @@ impl<'p, R: Real> Evaluator<'p, R> {
             return Ok(Evaluator { plan, buffers });
         }
         let tolerance = buffers.scratch.hole_tolerance;
+        let relative = buffers.scratch.relative_caps;
         let mut fresh = Self::new(plan)?;
         fresh.set_hole_tolerance(tolerance);
+        fresh.set_relative_caps(relative);
         Ok(fresh)
     }
 
@@ -457,6 +470,23 @@ impl<'p, R: Real> Evaluator<'p, R> {
         let b = &mut self.buffers;
         for s in core::iter::once(&mut b.scratch).chain(&mut b.extra) {
             s.hole_tolerance = tolerance;
+        }
+    }
+
+    /// With `true`, every cap's patches come relative to the cap's centre
+    /// (the input vertex or face centre it surrounds): the record's
+    /// [`PatchRecord::origin`] is the centre and its control points are
+    /// what the kernel computed about it, not yet moved back. A consumer
+    /// adds the origin to positions (partials and normals need nothing).
+    /// Caps are computed about their centre either way; relative records
+    /// skip the last rounding of every control point to the size of its
+    /// distance from the coordinate origin, which is what limits `f32`
+    /// normals of small caps far from it. `false` (the default): absolute
+    /// control points and a zero origin, for every patch.
+    pub fn set_relative_caps(&mut self, on: bool) {
+        let b = &mut self.buffers;
+        for s in core::iter::once(&mut b.scratch).chain(&mut b.extra) {
+            s.relative_caps = on;
         }
     }
 
@@ -635,6 +665,7 @@ impl<R: Real> Scratch<R> {
             *d = (work[i as usize] - origin).0;
         }
         let pole = [R::ZERO; 3];
+        let relative = self.relative_caps;
         let depth = plan.options.depth;
         let n_in = n >> p.prior_steps;
         let (l1, rest) = self.links.split_at(n.min(self.links.len()));
@@ -684,17 +715,20 @@ impl<R: Real> Scratch<R> {
                     [r0 - 1.0, r1 - 1.0, v0, v1]
                 };
                 if let PatchGeometry::Cubic(patch) = ring.geometry {
-                    sink.patch(&record(
+                    let (patch, at) = placed(patch, origin, relative);
+                    let mut rec = record(
                         PatchKind::C2ps,
                         m + p.prior_steps,
                         &chart,
                         rect,
-                        moved(patch, origin),
+                        patch,
                         ring.finer,
                         ring.hole,
                         limit + origin,
                         Some(index),
-                    ));
+                    );
+                    rec.origin = at;
+                    sink.patch(&rec);
                 }
             },
         )
@@ -737,6 +771,7 @@ impl<R: Real> Scratch<R> {
             *d = (work[i as usize] - origin).0;
         }
         let center = [R::ZERO; 3];
+        let relative = self.relative_caps;
         let nodes = &self.cnet[..6 * n];
         let depth = plan.options.depth;
         let level0 = e.level;
@@ -757,13 +792,13 @@ impl<R: Real> Scratch<R> {
             let level = ring.ring + level0;
             let (finer, hole) = (ring.finer, ring.hole);
             let hole_point = limit + origin;
-            match ring.geometry {
+            let mut rec = match ring.geometry {
                 PatchGeometry::Cubic(p) => record(
                     ring.kind,
                     level,
                     &chart,
                     rect,
-                    moved(p, origin),
+                    placed(p, origin, relative).0,
                     finer,
                     hole,
                     hole_point,
@@ -774,13 +809,17 @@ impl<R: Real> Scratch<R> {
                     level,
                     &chart,
                     rect,
-                    moved(p, origin),
+                    placed(p, origin, relative).0,
                     finer,
                     hole,
                     hole_point,
                     Some(index),
                 ),
+            };
+            if relative {
+                rec.origin = origin;
             }
+            rec
         };
         let stop = (depth, self.hole_tolerance);
         let (scheme, limit, rings, normal) = match e.scheme {
@@ -854,6 +893,22 @@ pub(crate) fn moved<R: Real, const K: usize>(
 ) -> TensorPatch<R, K> {
     patch.points.iter_mut().flatten().for_each(|q| *q += by);
     patch
+}
+
+/// A cap's ring patch computed about `origin` as its record carries it:
+/// moved back, with a zero origin; or, `relative`, as computed, with
+/// `origin` beside it ([`PatchRecord::origin`]).
+#[inline]
+fn placed<R: Real, const K: usize>(
+    patch: TensorPatch<R, K>,
+    origin: Point3<R>,
+    relative: bool,
+) -> (TensorPatch<R, K>, Point3<R>) {
+    if relative {
+        (patch, origin)
+    } else {
+        (moved(patch, origin), Point3::ZERO)
+    }
 }
 
 /// Which edge of the image square edge `k` of the own square maps to.
@@ -938,6 +993,7 @@ where
             }
             .into()
         },
+        origin: Point3::ZERO,
         finer: if identity {
             finer
         } else {

@@ -229,6 +229,7 @@ impl<R: Real + Send + Sync> Evaluator<'_, R> {
             while b.extra.len() + 1 < threads {
                 let mut extra = Scratch::new(plan, need)?;
                 extra.hole_tolerance = b.scratch.hole_tolerance;
+                extra.relative_caps = b.scratch.relative_caps;
                 b.extra.push(extra);
             }
         }

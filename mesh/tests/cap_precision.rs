@@ -23,6 +23,16 @@ fn on_grid(mut mesh: MeshInput) -> MeshInput {
 }
 
 fn evaluate_f32(plan: &SurfacePlan<'_>, mesh: &MeshInput, offset: [f64; 3]) -> CollectSurface<f32> {
+    evaluate_f32_with(plan, mesh, offset, false)
+}
+
+/// [`evaluate_f32`], cap patches relative to their centre when `relative`.
+fn evaluate_f32_with(
+    plan: &SurfacePlan<'_>,
+    mesh: &MeshInput,
+    offset: [f64; 3],
+    relative: bool,
+) -> CollectSurface<f32> {
     let at: Vec<[f32; 3]> = mesh
         .vertices
         .iter()
@@ -35,10 +45,9 @@ fn evaluate_f32(plan: &SurfacePlan<'_>, mesh: &MeshInput, offset: [f64; 3]) -> C
         "the moved coordinates are exact in f32"
     );
     let mut sink = CollectSurface::new();
-    Evaluator::<f32>::new(plan)
-        .expect("evaluator")
-        .evaluate(&at, &mut sink)
-        .expect("evaluate");
+    let mut ev = Evaluator::<f32>::new(plan).expect("evaluator");
+    ev.set_relative_caps(relative);
+    ev.evaluate(&at, &mut sink).expect("evaluate");
     sink
 }
 
@@ -130,5 +139,96 @@ fn c2ps_caps_move_with_the_mesh_up_to_one_rounding() {
         samples::pole_disk(8, 5),
         false,
         Scheme::C2ps,
+    );
+}
+
+/// Relative cap records ([`Evaluator::set_relative_caps`]) are what the
+/// kernel computed about the cap's centre: the absolute records are them
+/// plus the origin, bit for bit (the same one addition per coordinate), and
+/// under an exact offset they do not move at all (the kernel saw the same
+/// net), so their partials keep the precision of the cap's size however
+/// far the mesh lies from the coordinate origin. Patches outside caps have
+/// a zero origin either way.
+fn relative_caps_are_the_absolute_ones_before_moving_back(
+    name: &str,
+    mesh: MeshInput,
+    catmull_clark: bool,
+) {
+    let options = common::plan_options(4, catmull_clark);
+    let mesh = on_grid(mesh);
+    let t = Topology::new(&mesh).expect("valid mesh");
+    let plan = SurfacePlan::new(&t, options).expect("plan");
+    let absolute = evaluate_f32_with(&plan, &mesh, OFFSET, false);
+    let relative = evaluate_f32_with(&plan, &mesh, OFFSET, true);
+    let near = evaluate_f32_with(&plan, &mesh, [0.0; 3], true);
+    assert_eq!(absolute.patches.len(), relative.patches.len());
+    assert_eq!(near.patches.len(), relative.patches.len());
+    let mut cap_patches = 0;
+    for ((a, r), n) in absolute
+        .patches
+        .iter()
+        .zip(&relative.patches)
+        .zip(&near.patches)
+    {
+        assert_eq!(
+            a.origin.0, [0.0; 3],
+            "{name}: absolute records have no origin"
+        );
+        assert_eq!(
+            a.hole_point, r.hole_point,
+            "{name}: hole points stay absolute"
+        );
+        if r.cap.is_none() {
+            assert_eq!(
+                r.origin.0, [0.0; 3],
+                "{name}: patches outside caps are absolute"
+            );
+            assert_eq!(points(&a.geometry), points(&r.geometry));
+            continue;
+        }
+        cap_patches += 1;
+        assert_ne!(
+            r.origin.0, [0.0; 3],
+            "{name}: a cap patch's origin is its centre"
+        );
+        for (p, q) in points(&a.geometry).into_iter().zip(points(&r.geometry)) {
+            let moved_back = [0, 1, 2].map(|k| q[k] + r.origin.0[k]);
+            assert_eq!(p, moved_back, "{name}: absolute = relative + origin");
+        }
+        assert_eq!(
+            points(&n.geometry),
+            points(&r.geometry),
+            "{name}: the offset does not reach them"
+        );
+        let shift = [0, 1, 2].map(|k| r.origin.0[k] as f64 - n.origin.0[k] as f64);
+        assert_eq!(shift, OFFSET, "{name}: the origin carries the offset");
+    }
+    assert!(cap_patches > 0, "{name}: cap patches");
+}
+
+#[test]
+fn relative_eg_caps_are_the_absolute_ones_before_moving_back() {
+    relative_caps_are_the_absolute_ones_before_moving_back(
+        "valence 5",
+        samples::extraordinary_disk(5, 4),
+        false,
+    );
+}
+
+#[test]
+fn relative_catmull_clark_caps_are_the_absolute_ones_before_moving_back() {
+    relative_caps_are_the_absolute_ones_before_moving_back(
+        "valence 6",
+        samples::extraordinary_disk(6, 4),
+        true,
+    );
+}
+
+#[test]
+fn relative_c2ps_caps_are_the_absolute_ones_before_moving_back() {
+    relative_caps_are_the_absolute_ones_before_moving_back(
+        "valence 8 fan",
+        samples::pole_disk(8, 5),
+        false,
     );
 }
