@@ -11,7 +11,10 @@
 # two valence-12 poles, a rounded cube with eight valence-3 points and a
 # valence-7 disk: quads, triangle fans, one open boundary per copy) and
 # `triangles` (a torus of triangles, every vertex of valence 6: two
-# whole-mesh refinement steps, then a cap at every vertex and face centre).
+# whole-mesh refinement steps, then a cap at every vertex and face centre)
+# and `features` (a quad torus with isolated valence-3 and -5 points,
+# creases, corners and holes as tag lines: the adaptive refinement's mesh,
+# not in the default KINDS).
 # Settings: `default` (depth 4, tolerance 3e-3rel, grid 4, every core) and
 # `depth 6` (`--depth 6 --tolerance none`: every cap 6 rings).
 #

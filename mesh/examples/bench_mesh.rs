@@ -12,7 +12,12 @@
 //!   torus with every quad split along a diagonal: every vertex of
 //!   valence 6, so every vertex and every face centre is a cap);
 //! - `icosphere LEVELS`: the icosahedron split `LEVELS` times into four on
-//!   the unit sphere (`20·4^LEVELS` triangles).
+//!   the unit sphere (`20·4^LEVELS` triangles);
+//! - `features FACES`: [`samples::feature_torus`] with `16·base²` quads,
+//!   `base` the nearest to `√(FACES/16)`: isolated valence-3 and -5
+//!   points, creases of sharpness 2.5 and 10, eight corners and holes,
+//!   written as OpenSubdiv's tag lines (`t crease`, `t corner`, `t hole`):
+//!   the adaptive refinement's mesh.
 //!
 //! `cargo run --release -p capdiv-mesh --example bench_mesh -- mixed 10000 > mixed-1e4.obj`
 
@@ -88,6 +93,10 @@ fn main() {
             triangle_torus(k)
         }
         Some("icosphere") => samples::icosphere(number(1) as u32),
+        Some("features") => {
+            let base = ((number(1) as f64 / 16.0).sqrt().round() as usize).max(3);
+            samples::feature_torus(base)
+        }
         _ => usage(),
     };
     let mut out = BufWriter::new(std::io::stdout().lock());
@@ -101,10 +110,23 @@ fn main() {
         }
         writeln!(out).expect("stdout");
     }
+    // Tags, 0-based as OpenSubdiv's shape files have them.
+    for c in &mesh.tags.creases {
+        let [a, b] = c.vertices;
+        writeln!(out, "t crease 2/1/0 {a} {b} {}", c.sharpness).expect("stdout");
+    }
+    for c in &mesh.tags.corners {
+        writeln!(out, "t corner 1/1/0 {} {}", c.vertex, c.sharpness).expect("stdout");
+    }
+    for h in &mesh.tags.holes {
+        writeln!(out, "t hole 1/0/0 {h}").expect("stdout");
+    }
     out.flush().expect("stdout");
 }
 
 fn usage() -> ! {
-    eprintln!("usage: bench_mesh (mixed FACES | triangles FACES | icosphere LEVELS)");
+    eprintln!(
+        "usage: bench_mesh (mixed FACES | triangles FACES | icosphere LEVELS | features FACES)"
+    );
     std::process::exit(2)
 }

@@ -16,12 +16,15 @@
 //!   and the finger junctions of [`hand`];
 //! - regular quad meshes: [`torus`], [`grid`];
 //! - a triangle mesh with valence-5 and -6 vertices: [`icosphere`];
-//! - faces that need refinement first: [`triangle_and_pentagon_mesh`].
+//! - faces that need refinement first: [`triangle_and_pentagon_mesh`];
+//! - benchmark tori of `16·base²` quads: isolated extraordinary points
+//!   ([`ev_torus`]), and those with creases, corners and holes
+//!   ([`feature_torus`]).
 //!
 //! Angles come from a local Taylor-series `sin`/`cos` (the crate has no
 //! `libm` of its own); positions are only meant to be reasonable shapes.
 
-use crate::input::MeshInput;
+use crate::input::{EdgeCrease, MeshInput, VertexCorner};
 use alloc::collections::{BTreeMap, BTreeSet};
 use alloc::vec;
 use alloc::vec::Vec;
@@ -779,6 +782,152 @@ pub fn feature_mix(faces: usize) -> MeshInput {
     out
 }
 
+/// Catmull-Clark's topological split (positions averaged, not smoothed):
+/// every k-gon becomes k quads, its children contiguous and in corner order.
+/// Tags follow: a crease edge's two halves keep its sharpness, a hole's
+/// children are holes, corners stay on their vertex.
+pub fn split_into_quads(m: &MeshInput) -> MeshInput {
+    let mut vertices = m.vertices.clone();
+    let mut edge_point: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+    let mut edge = |vertices: &mut Vec<[f64; 3]>, a: u32, b: u32| {
+        *edge_point.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (p, q) = (m.vertices[a as usize], m.vertices[b as usize]);
+            vertices.push([
+                (p[0] + q[0]) / 2.0,
+                (p[1] + q[1]) / 2.0,
+                (p[2] + q[2]) / 2.0,
+            ]);
+            (vertices.len() - 1) as u32
+        })
+    };
+    let mut faces = Vec::with_capacity(4 * m.faces.len());
+    let mut children = Vec::with_capacity(m.faces.len());
+    for f in &m.faces {
+        let k = f.len();
+        let mut c = [0.0; 3];
+        for &v in f {
+            for (c, x) in c.iter_mut().zip(m.vertices[v as usize]) {
+                *c += x / k as f64;
+            }
+        }
+        vertices.push(c);
+        let centre = (vertices.len() - 1) as u32;
+        let mids: Vec<u32> = (0..k)
+            .map(|i| edge(&mut vertices, f[i], f[(i + 1) % k]))
+            .collect();
+        children.push(faces.len() as u32..(faces.len() + k) as u32);
+        for i in 0..k {
+            faces.push(vec![f[i], mids[i], centre, mids[(i + k - 1) % k]]);
+        }
+    }
+    let mut out = MeshInput::new(vertices, faces);
+    out.tags = m.tags.clone();
+    out.tags.creases = m
+        .tags
+        .creases
+        .iter()
+        .flat_map(|c| {
+            let [a, b] = c.vertices;
+            let e = edge(&mut out.vertices, a, b);
+            [[a, e], [e, b]].map(|vertices| EdgeCrease {
+                vertices,
+                sharpness: c.sharpness,
+            })
+        })
+        .collect();
+    out.tags.holes = m
+        .tags
+        .holes
+        .iter()
+        .flat_map(|&h| children[h as usize].clone())
+        .collect();
+    out
+}
+
+/// `torus(base, base)` with, for i ≡ 0 (mod 4) and j even, the
+/// edge shared by faces (i, j) and (i+1, j) turned by one step in their
+/// hexagon: two valence-3 and two valence-5 points per turned edge.
+fn turned_torus(base: usize) -> MeshInput {
+    let n = base;
+    let mut m = torus(n, n);
+    let at = |i: usize, j: usize| ((i % n) * n + j % n) as u32;
+    let face = |i: usize, j: usize| (i % n) * n + j % n;
+    for i in (0..n.saturating_sub(3)).step_by(4) {
+        for j in (0..n - 1).step_by(2) {
+            let p = [
+                at(i, j),
+                at(i + 1, j),
+                at(i + 2, j),
+                at(i + 2, j + 1),
+                at(i + 1, j + 1),
+                at(i, j + 1),
+            ];
+            m.faces[face(i, j)] = vec![p[0], p[1], p[2], p[3]];
+            m.faces[face(i + 1, j)] = vec![p[0], p[3], p[4], p[5]];
+        }
+    }
+    m
+}
+
+/// A torus of `16·base²` quads with isolated extraordinary points and no
+/// tags: [`turned_torus`] split twice, so the extraordinary points are 4
+/// edges apart.
+pub fn ev_torus(base: usize) -> MeshInput {
+    split_into_quads(&split_into_quads(&turned_torus(base)))
+}
+
+/// A torus of `16·base²` quads with features, from `torus(base,
+/// base)` split twice ([`split_into_quads`]):
+/// - isolated extraordinary points: before the splits, the edge shared by
+///   faces (i, j) and (i+1, j) for i ≡ 0 (mod 4), j even, turned by one
+///   step in their hexagon (two valence-3 and two valence-5 points), so
+///   after the splits they are 4 edges apart;
+/// - creases along whole grid lines: sharpness 2.5 around the tube at
+///   columns ≡ 3 (mod 8) (no turned edge there), 10 around the major circle
+///   at rows ≡ 1 (mod 8) (through turned hexagons);
+/// - corners at the first eight crossings of those lines (sharpness 10 and
+///   2.5, alternating);
+/// - holes: the 16 children of base faces (i, j) with i ≡ 5, j ≡ 12 (mod 16).
+pub fn feature_torus(base: usize) -> MeshInput {
+    let n = base;
+    let mut m = turned_torus(n);
+    let at = |i: usize, j: usize| ((i % n) * n + j % n) as u32;
+    let face = |i: usize, j: usize| (i % n) * n + j % n;
+    let columns: Vec<usize> = (3..n).step_by(8).collect();
+    let rows: Vec<usize> = (1..n).step_by(8).collect();
+    for &c in &columns {
+        for j in 0..n {
+            m.tags.creases.push(EdgeCrease {
+                vertices: [at(c, j), at(c, j + 1)],
+                sharpness: 2.5,
+            });
+        }
+    }
+    for &r in &rows {
+        for i in 0..n {
+            m.tags.creases.push(EdgeCrease {
+                vertices: [at(i, r), at(i + 1, r)],
+                sharpness: 10.0,
+            });
+        }
+    }
+    let crossings = columns
+        .iter()
+        .flat_map(|&c| rows.iter().map(move |&r| (c, r)));
+    for (k, (c, r)) in crossings.take(8).enumerate() {
+        m.tags.corners.push(VertexCorner {
+            vertex: at(c, r),
+            sharpness: if k % 2 == 0 { 10.0 } else { 2.5 },
+        });
+    }
+    for i in (5..n).step_by(16) {
+        for j in (12..n).step_by(16) {
+            m.tags.holes.push(face(i, j) as u32);
+        }
+    }
+    split_into_quads(&split_into_quads(&m))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1180,5 +1329,38 @@ mod tests {
         for m in [pole_disk(5, 3), grid(3, 4), extraordinary_disk(5, 3)] {
             assert!(!crate::Topology::new(&m).unwrap().is_closed());
         }
+    }
+
+    #[test]
+    fn benchmark_tori_have_isolated_valence_3_and_5_points_and_their_tags() {
+        // base 16: edges turned at i = 0, 4, 8, 12 and j = 0, 2, …, 14 → 32
+        // hexagons, each with two valence-3 and two valence-5 points, which
+        // the splits keep and move 4 edges apart.
+        for (m, tagged) in [(ev_torus(16), false), (feature_torus(16), true)] {
+            check_closed(&m, 0);
+            assert_eq!(m.faces.len(), 16 * 16 * 16);
+            assert!(m.faces.iter().all(|f| f.len() == 4));
+            let val = valences(&m);
+            assert_eq!((count(&val, 3), count(&val, 5)), (64, 64));
+            assert_eq!(val.len(), count(&val, 3) + count(&val, 4) + count(&val, 5));
+            let t = &m.tags;
+            assert_eq!(!t.creases.is_empty(), tagged);
+            assert_eq!(!t.corners.is_empty(), tagged);
+            let edge_set: BTreeSet<(u32, u32)> = edges(&m).into_keys().collect();
+            for c in &t.creases {
+                let [a, b] = c.vertices;
+                assert!(
+                    edge_set.contains(&(a.min(b), a.max(b))),
+                    "crease on an edge"
+                );
+            }
+        }
+        // One base face, (5, 12), is a hole: its 16 grandchildren are holes.
+        // Both crease sharpnesses survive the splits on both halves.
+        let f = feature_torus(16);
+        assert_eq!(f.tags.holes.len(), 16);
+        assert!(f.tags.holes.iter().all(|&h| (h as usize) < f.faces.len()));
+        assert!(f.tags.creases.iter().any(|c| c.sharpness == 2.5));
+        assert!(f.tags.creases.iter().any(|c| c.sharpness == 10.0));
     }
 }
