@@ -26,9 +26,10 @@ mod common;
 #[path = "../tests/osd/mod.rs"]
 mod osd;
 
+use capdiv_mesh::samples::feature_torus;
 use capdiv_mesh::sinks::SurfaceStats;
 use capdiv_mesh::{samples, Evaluator, MeshInput, PlanOptions, SurfacePlan, Topology};
-use common::{feature_torus, helper, job_file, time, DEPTH};
+use common::{helper, job_file, time, DEPTH};
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::path::Path;

@@ -48,11 +48,12 @@ mod common;
 mod osd;
 
 use capdiv::Real;
+use capdiv_mesh::samples::{ev_torus, feature_torus};
 use capdiv_mesh::sinks::PatchCounts;
 use capdiv_mesh::tessellate::{tessellate, write_obj, PatchGeometry};
 use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord};
 use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink};
-use common::{ev_torus, feature_torus, helper, job_file, time, DEPTH};
+use common::{helper, job_file, time, DEPTH};
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::path::Path;

@@ -5,7 +5,6 @@
 #![allow(dead_code)]
 
 use super::osd;
-pub use capdiv_mesh::samples::{ev_torus, feature_torus};
 use capdiv_mesh::MeshInput;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
