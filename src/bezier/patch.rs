@@ -46,6 +46,7 @@ impl<R: Real> PatchPoint<R> {
 }
 
 /// de Casteljau on `K` points at `t`: value and derivative.
+#[inline]
 fn casteljau<R: Real, const K: usize>(pts: &[Point3<R>; K], t: R) -> (Point3<R>, Point3<R>) {
     let mut b = *pts;
     let s = R::ONE - t;
@@ -98,6 +99,7 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
     /// evaluations instead of `K + 2`. Sampling a grid line by line this
     /// way gives, bit for bit, what [`TensorPatch::evaluate`] gives at each
     /// point (it is the same sequence of operations).
+    #[inline]
     pub fn iso_v(&self, v: R) -> Result<IsoCurve<'_, R, K>, Error> {
         if !in_unit(v) {
             return Err(Error::OutOfDomain);
@@ -159,6 +161,7 @@ impl<'a, R: Real, const K: usize> IsoCurve<'a, R, K> {
 
     /// Position and partials at `(u, v)`, `u ∈ [0, 1]` (else
     /// [`Error::OutOfDomain`]): bit for bit [`TensorPatch::evaluate`]`(u, v)`.
+    #[inline]
     pub fn evaluate(&self, u: R) -> Result<PatchPoint<R>, Error> {
         if !in_unit(u) {
             return Err(Error::OutOfDomain);
@@ -171,6 +174,7 @@ impl<'a, R: Real, const K: usize> IsoCurve<'a, R, K> {
     /// scalar's range), the whole evaluation again about zero. One test for
     /// the nine coordinates: their sum is finite only if each is (a sum
     /// that overflows merely takes the slower way).
+    #[inline]
     fn at_or_about_zero(&self, u: R) -> PatchPoint<R> {
         let local = self.at(u);
         let sum = local.position + local.du + local.dv;
@@ -182,6 +186,7 @@ impl<'a, R: Real, const K: usize> IsoCurve<'a, R, K> {
     }
 
     /// de Casteljau along `u`, the position shifted back by the origin.
+    #[inline]
     fn at(&self, u: R) -> PatchPoint<R> {
         let (position, du) = casteljau(&self.rows, u);
         let (dv, _) = casteljau(&self.rows_dv, u);
