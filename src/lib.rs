@@ -64,7 +64,8 @@ pub mod real;
 pub mod trig;
 
 pub use bezier::{
-    BicubicPatch, BiquarticPatch, IsoCurve, PatchPoint, SurfaceGeometry, SurfaceJet, TensorPatch,
+    BicubicPatch, BiquarticPatch, IsoCurve, PatchLines, PatchPoint, SurfaceGeometry, SurfaceJet,
+    TensorPatch,
 };
 pub use cc::CcCap;
 pub use eg::{CNet, DNet, EgSubdivision, RuleTable};

@@ -106,13 +106,18 @@ fn iso_curves_sample_a_grid_as_pointwise_evaluation_does() {
                 .points
                 .map(|row| row.map(|q| Point3(q.0.map(|x| (x * 1e3 + 7e3) as f32)))),
         };
+        let (lines, lines32) = (p.lines(), p32.lines());
         for &v in &params {
             let line = p.iso_v(v).unwrap();
             let line32 = p32.iso_v(v as f32).unwrap();
+            // The same lines from points made relative once per patch.
+            let (again, again32) = (lines.iso_v(v).unwrap(), lines32.iso_v(v as f32).unwrap());
             assert_eq!(line.v(), v);
             for &u in &params {
                 assert_eq!(line.evaluate(u), p.evaluate(u, v));
                 assert_eq!(line32.evaluate(u as f32), p32.evaluate(u as f32, v as f32));
+                assert_eq!(again.evaluate(u), p.evaluate(u, v));
+                assert_eq!(again32.evaluate(u as f32), p32.evaluate(u as f32, v as f32));
             }
         }
     }
@@ -123,6 +128,7 @@ fn iso_curves_reject_parameters_outside_the_domain() {
     let p = patch::<4>(2);
     for t in [-0.1, 1.1, f64::NAN, f64::INFINITY] {
         assert_eq!(p.iso_v(t).err(), Some(Error::OutOfDomain));
+        assert_eq!(p.lines().iso_v(t).err(), Some(Error::OutOfDomain));
         assert_eq!(p.iso_v(0.5).unwrap().evaluate(t), Err(Error::OutOfDomain));
     }
 }
@@ -140,6 +146,7 @@ fn iso_curves_of_a_patch_spanning_more_than_f32_take_the_evaluation_about_zero()
     let line = p.iso_v(0.0).unwrap();
     let got = line.evaluate(0.0).unwrap();
     assert_eq!(Ok(got), p.evaluate(0.0, 0.0));
+    assert_eq!(p.lines().iso_v(0.0).unwrap().evaluate(0.0), Ok(got));
     assert_eq!(got.position, Point3::new(-3e38, 0.0, 0.0));
 }
 

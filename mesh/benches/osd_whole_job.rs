@@ -146,9 +146,10 @@ impl<R: Real> GridSink<'_, R> {
             s[i] = R::from_f64(((2 * i + 1) as f64 / n - u0) / (u1 - u0));
         }
         // Line by line: one reduction along v per grid column.
+        let lines = g.lines();
         for j in inside(v0, v1) {
             let t = R::from_f64(((2 * j + 1) as f64 / n - v0) / (v1 - v0));
-            let Ok(line) = g.iso_v(t) else { continue };
+            let Ok(line) = lines.iso_v(t) else { continue };
             for i in rows.clone() {
                 if let Ok(x) = line.evaluate(s[i]) {
                     let nrm = x.normal().map_or([R::ZERO; 3], |n| n.0);

@@ -10,4 +10,4 @@ pub mod patch;
 
 pub use convert::{bspline_to_bezier_cubic, BSPLINE_TO_BEZIER_CUBIC};
 pub use jet::{SurfaceGeometry, SurfaceJet};
-pub use patch::{BicubicPatch, BiquarticPatch, IsoCurve, PatchPoint, TensorPatch};
+pub use patch::{BicubicPatch, BiquarticPatch, IsoCurve, PatchLines, PatchPoint, TensorPatch};

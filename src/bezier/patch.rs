@@ -107,6 +107,19 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
         Ok(IsoCurve::about(self, self.origin(), v))
     }
 
+    /// The control points relative to the first one, subtracted once for
+    /// sampling many lines of the patch ([`PatchLines::iso_v`]: the same
+    /// [`IsoCurve`], bit for bit, as [`TensorPatch::iso_v`], without
+    /// subtracting the origin again on every line).
+    pub fn lines(&self) -> PatchLines<'_, R, K> {
+        let origin = self.origin();
+        PatchLines {
+            patch: self,
+            origin,
+            relative: self.points.map(|row| row.map(|p| p - origin)),
+        }
+    }
+
     /// Position at `(u, v)`.
     pub fn position(&self, u: R, v: R) -> Result<Point3<R>, Error> {
         Ok(self.evaluate(u, v)?.position)
@@ -121,6 +134,29 @@ impl<R: Real, const K: usize> TensorPatch<R, K> {
 /// `t ∈ [0, 1]` (and not NaN).
 fn in_unit<R: Real>(t: R) -> bool {
     t.is_finite() && t >= R::ZERO && t <= R::ONE
+}
+
+/// A [`TensorPatch`]'s control points relative to its first one, made by
+/// [`TensorPatch::lines`] for sampling a grid line by line.
+#[derive(Clone, Copy, Debug)]
+pub struct PatchLines<'a, R, const K: usize> {
+    patch: &'a TensorPatch<R, K>,
+    origin: Point3<R>,
+    relative: [[Point3<R>; K]; K],
+}
+
+impl<'a, R: Real, const K: usize> PatchLines<'a, R, K> {
+    /// [`TensorPatch::iso_v`] from the points already relative to the
+    /// origin: `v ∈ [0, 1]`, else [`Error::OutOfDomain`].
+    #[inline]
+    pub fn iso_v(&self, v: R) -> Result<IsoCurve<'a, R, K>, Error> {
+        if !in_unit(v) {
+            return Err(Error::OutOfDomain);
+        }
+        Ok(IsoCurve::of_rows(self.patch, self.origin, v, |i| {
+            self.relative[i]
+        }))
+    }
 }
 
 /// A [`TensorPatch`] along one line `v = const`, made by
@@ -138,10 +174,22 @@ pub struct IsoCurve<'a, R, const K: usize> {
 impl<'a, R: Real, const K: usize> IsoCurve<'a, R, K> {
     /// de Casteljau along `v` on each row of points relative to `origin`.
     fn about(patch: &'a TensorPatch<R, K>, origin: Point3<R>, v: R) -> Self {
+        Self::of_rows(patch, origin, v, |i| patch.points[i].map(|p| p - origin))
+    }
+
+    /// de Casteljau along `v` on each row `row(i)` of points relative to
+    /// `origin` (the patch's rows minus `origin`).
+    #[inline]
+    fn of_rows(
+        patch: &'a TensorPatch<R, K>,
+        origin: Point3<R>,
+        v: R,
+        row: impl Fn(usize) -> [Point3<R>; K],
+    ) -> Self {
         let mut rows = [Point3::ZERO; K];
         let mut rows_dv = [Point3::ZERO; K];
         for i in 0..K {
-            let (p, d) = casteljau(&patch.points[i].map(|p| p - origin), v);
+            let (p, d) = casteljau(&row(i), v);
             rows[i] = p;
             rows_dv[i] = d;
         }

@@ -85,6 +85,7 @@ impl<R: Real> Raw<R> {
         self.positions
             .resize(start + layout.samples.len(), p.hole_point);
         self.normals.resize(start + layout.samples.len(), None);
+        let lines = g.lines();
         let mut line = None;
         for &k in &layout.lines {
             let SampleAt::Lattice(i, j) = layout.samples[k as usize] else {
@@ -96,7 +97,7 @@ impl<R: Real> Raw<R> {
                 .is_none_or(|l: &IsoCurve<'_, R, K>| l.v() != v)
             {
                 // v ∈ [0, 1]: iso_v and evaluate cannot fail with OutOfDomain.
-                line = g.iso_v(v).ok();
+                line = lines.iso_v(v).ok();
             }
             let point = line.as_ref().map(|l| l.evaluate(self.params[i as usize]));
             let (pos, n) = match point {
