@@ -870,8 +870,10 @@ fn turned_torus(base: usize) -> MeshInput {
 }
 
 /// A torus of `16·base²` quads with isolated extraordinary points and no
-/// tags: [`turned_torus`] split twice, so the extraordinary points are 4
-/// edges apart.
+/// tags: [`torus`]`(base, base)` with, for i ≡ 0 (mod 4) and j even, the
+/// edge shared by faces (i, j) and (i+1, j) turned by one step in their
+/// hexagon (two valence-3 and two valence-5 points), split twice
+/// ([`split_into_quads`]), so the extraordinary points are 4 edges apart.
 pub fn ev_torus(base: usize) -> MeshInput {
     split_into_quads(&split_into_quads(&turned_torus(base)))
 }
