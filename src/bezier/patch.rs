@@ -2,6 +2,11 @@
 //! evaluation by de Casteljau's algorithm: position, both first partials and the
 //! unit normal. Index `[i][j]`: `i` runs along `u` (for polar rings: radially
 //! outward), `j` along `v` (counter-clockwise), so `∂u × ∂v` is the normal.
+//!
+//! A grid is sampled line by line: [`TensorPatch::lines`] makes the points
+//! relative once, [`PatchLines::iso_v`] reduces the rows along `v` once per
+//! line ([`IsoCurve`]), and each point on the line is then two curve
+//! evaluations along `u`, bit for bit what [`TensorPatch::evaluate`] gives.
 
 use crate::error::Error;
 use crate::point::Point3;
