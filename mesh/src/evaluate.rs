@@ -477,7 +477,9 @@ impl<'p, R: Real> Evaluator<'p, R> {
     /// (the input vertex or face centre it surrounds): the record's
     /// [`PatchRecord::origin`] is the centre and its control points are
     /// what the kernel computed about it, not yet moved back. A consumer
-    /// adds the origin to positions (partials and normals need nothing).
+    /// adds the origin to positions (partials and normals need nothing):
+    /// [`crate::tessellate`]'s tessellations do; a sink that reads control
+    /// points as absolute (the CLI's patch and CAD writers) wants `false`.
     /// Caps are computed about their centre either way; relative records
     /// skip the last rounding of every control point to the size of its
     /// distance from the coordinate origin, which is what limits `f32`

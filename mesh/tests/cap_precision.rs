@@ -232,3 +232,36 @@ fn relative_c2ps_caps_are_the_absolute_ones_before_moving_back() {
         false,
     );
 }
+
+/// The tessellation adds a record's origin back: relative cap records
+/// tessellate to the mesh absolute ones give, the same vertices and faces,
+/// positions within a few roundings (the evaluation runs on other numbers,
+/// relative to the cap's centre instead of to the patch's first point).
+#[test]
+fn relative_cap_records_tessellate_like_absolute_ones() {
+    let mesh = samples::extraordinary_disk(5, 4);
+    let t = Topology::new(&mesh).expect("valid mesh");
+    let plan = SurfacePlan::new(&t, common::plan_options(3, false)).expect("plan");
+    let tessellation = |relative: bool| {
+        let mut sink = CollectSurface::new();
+        let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
+        ev.set_relative_caps(relative);
+        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
+        assert_eq!(
+            sink.patches.iter().any(|p| p.origin.0 != [0.0; 3]),
+            relative,
+            "cap patches carry their centre only when relative"
+        );
+        capdiv_mesh::tessellate::tessellate(sink.patches.iter().map(|p| (p, 0)), 3, 1e-9)
+    };
+    let (absolute, relative) = (tessellation(false), tessellation(true));
+    assert_eq!(absolute.faces, relative.faces);
+    assert_eq!(absolute.positions.len(), relative.positions.len());
+    // Coordinates of size up to about 4: a few roundings of 2⁻⁵² · 4.
+    for (a, r) in absolute.positions.iter().zip(&relative.positions) {
+        assert!(a.max_abs_diff(*r) < 1e-14, "{a:?} vs {r:?}");
+    }
+    for (a, r) in absolute.normals.iter().zip(&relative.normals) {
+        assert!(a.max_abs_diff(*r) < 1e-12, "{a:?} vs {r:?}");
+    }
+}

@@ -74,7 +74,8 @@ impl<R: Real> Raw<R> {
 
     /// The positions and normals of `layout`'s samples of `g`, the lattice
     /// line by line ([`PatchLayout::lines`]: one reduction along `v` per
-    /// line, each point bit for bit `g.evaluate(u, v)`).
+    /// line, each point bit for bit `g.evaluate(u, v)`), positions moved by
+    /// the record's origin where it has one ([`PatchRecord::origin`]).
     fn push_samples<const K: usize>(
         &mut self,
         g: &TensorPatch<R, K>,
@@ -86,6 +87,9 @@ impl<R: Real> Raw<R> {
             .resize(start + layout.samples.len(), p.hole_point);
         self.normals.resize(start + layout.samples.len(), None);
         let lines = g.lines();
+        // Absolute records (zero origin) keep their positions' bits: no
+        // `+ 0`, which would turn a −0 coordinate into +0.
+        let origin = (p.origin != Point3::ZERO).then_some(p.origin);
         let mut line = None;
         for &k in &layout.lines {
             let SampleAt::Lattice(i, j) = layout.samples[k as usize] else {
@@ -101,7 +105,10 @@ impl<R: Real> Raw<R> {
             }
             let point = line.as_ref().map(|l| l.evaluate(self.params[i as usize]));
             let (pos, n) = match point {
-                Some(Ok(pp)) => (pp.position, pp.normal().unwrap_or(Point3::ZERO)),
+                Some(Ok(pp)) => (
+                    origin.map_or(pp.position, |o| pp.position + o),
+                    pp.normal().unwrap_or(Point3::ZERO),
+                ),
                 _ => (Point3::ZERO, Point3::ZERO),
             };
             self.positions[start + k as usize] = pos;
