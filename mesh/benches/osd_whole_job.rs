@@ -200,6 +200,15 @@ fn capdiv_job_analyse(mesh: &MeshInput) -> SurfacePlan<'static> {
     SurfacePlan::for_mesh(mesh, options()).expect("capdiv analyses the mesh")
 }
 
+/// The evaluator [`GridSink`] samples from: cap patches relative to their
+/// cap's centre (the sink adds the origin), for `f32` normals at the
+/// precision of the cap's size.
+fn sampling_evaluator<'p, R: Real>(plan: &'p SurfacePlan<'p>) -> Evaluator<'p, R> {
+    let mut ev = Evaluator::<R>::new(plan).expect("evaluator");
+    ev.set_relative_caps(true);
+    ev
+}
+
 /// Evaluation and sampling: one [`Evaluator::evaluate`] into a [`GridSink`].
 #[inline(never)]
 fn evaluate_sampled<R: Real>(
@@ -223,8 +232,7 @@ fn whole_job<R: Real>(mesh: &MeshInput, stages: &mut [Duration; 3]) -> (Vec<[R; 
     let t = Instant::now();
     let plan = capdiv_job_analyse(mesh);
     let t1 = Instant::now();
-    let mut ev = Evaluator::<R>::new(&plan).expect("evaluator");
-    ev.set_relative_caps(true);
+    let mut ev = sampling_evaluator::<R>(&plan);
     let t2 = Instant::now();
     let (bases, ptex) = ptex_bases(mesh);
     let at = positions::<R>(mesh, 1.0);
@@ -306,8 +314,7 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
         black_box(whole_job::<R>(black_box(mesh), s));
     });
     let plan = capdiv_job_analyse(mesh);
-    let mut ev = Evaluator::<R>::new(&plan).expect("evaluator");
-    ev.set_relative_caps(true);
+    let mut ev = sampling_evaluator::<R>(&plan);
     let (bases, ptex) = ptex_bases(mesh);
     let moved = [positions::<R>(mesh, 1.0), positions::<R>(mesh, 1.01)];
     let mut out = vec![[R::from_f64(f64::NAN); 6]; ptex * GRID * GRID];

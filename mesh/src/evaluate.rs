@@ -645,6 +645,17 @@ impl<R: Real> Scratch<R> {
         }
     }
 
+    /// Whether cap records are relative, and the origin the records of a
+    /// cap computed about `centre` carry: `centre` if so, zero otherwise
+    /// ([`PatchRecord::origin`]).
+    fn record_origin(&self, centre: Point3<R>) -> (bool, Point3<R>) {
+        if self.relative_caps {
+            (true, centre)
+        } else {
+            (false, Point3::ZERO)
+        }
+    }
+
     /// Emits polar cap `index` (`p`), gathering from the working points.
     pub(crate) fn polar_cap(
         &mut self,
@@ -667,7 +678,7 @@ impl<R: Real> Scratch<R> {
             *d = (work[i as usize] - origin).0;
         }
         let pole = [R::ZERO; 3];
-        let relative = self.relative_caps;
+        let (relative, at) = self.record_origin(origin);
         let depth = plan.options.depth;
         let n_in = n >> p.prior_steps;
         let (l1, rest) = self.links.split_at(n.min(self.links.len()));
@@ -717,13 +728,12 @@ impl<R: Real> Scratch<R> {
                     [r0 - 1.0, r1 - 1.0, v0, v1]
                 };
                 if let PatchGeometry::Cubic(patch) = ring.geometry {
-                    let (patch, at) = placed(patch, origin, relative);
                     let mut rec = record(
                         PatchKind::C2ps,
                         m + p.prior_steps,
                         &chart,
                         rect,
-                        patch,
+                        placed(patch, origin, relative),
                         ring.finer,
                         ring.hole,
                         limit + origin,
@@ -773,7 +783,7 @@ impl<R: Real> Scratch<R> {
             *d = (work[i as usize] - origin).0;
         }
         let center = [R::ZERO; 3];
-        let relative = self.relative_caps;
+        let (relative, at) = self.record_origin(origin);
         let nodes = &self.cnet[..6 * n];
         let depth = plan.options.depth;
         let level0 = e.level;
@@ -800,7 +810,7 @@ impl<R: Real> Scratch<R> {
                     level,
                     &chart,
                     rect,
-                    placed(p, origin, relative).0,
+                    placed(p, origin, relative),
                     finer,
                     hole,
                     hole_point,
@@ -811,16 +821,14 @@ impl<R: Real> Scratch<R> {
                     level,
                     &chart,
                     rect,
-                    placed(p, origin, relative).0,
+                    placed(p, origin, relative),
                     finer,
                     hole,
                     hole_point,
                     Some(index),
                 ),
             };
-            if relative {
-                rec.origin = origin;
-            }
+            rec.origin = at;
             rec
         };
         let stop = (depth, self.hole_tolerance);
@@ -898,18 +906,18 @@ pub(crate) fn moved<R: Real, const K: usize>(
 }
 
 /// A cap's ring patch computed about `origin` as its record carries it:
-/// moved back, with a zero origin; or, `relative`, as computed, with
-/// `origin` beside it ([`PatchRecord::origin`]).
+/// moved back; or, `relative`, as computed (the record's origin is then
+/// `origin`: [`Scratch::record_origin`]).
 #[inline]
 fn placed<R: Real, const K: usize>(
     patch: TensorPatch<R, K>,
     origin: Point3<R>,
     relative: bool,
-) -> (TensorPatch<R, K>, Point3<R>) {
+) -> TensorPatch<R, K> {
     if relative {
-        (patch, origin)
+        patch
     } else {
-        (moved(patch, origin), Point3::ZERO)
+        moved(patch, origin)
     }
 }
 

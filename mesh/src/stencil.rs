@@ -77,37 +77,45 @@ impl StencilTable {
         }
     }
 
-    /// Appends a row; entries with the same index are kept separately (their
-    /// weights add up when applied). Returns the row's index.
-    pub fn push_row(&mut self, entries: impl IntoIterator<Item = (u32, f64)>) -> u32 {
+    /// The leading offset 0 a table made by `Default` lacks until its first
+    /// row.
+    #[inline]
+    fn open(&mut self) {
         if self.offsets.is_empty() {
             self.offsets.push(0);
         }
+    }
+
+    /// Ends the row whose entries were just pushed; returns its index.
+    #[inline]
+    fn close_row(&mut self) -> u32 {
+        self.offsets.push(self.indices.len() as u32);
+        (self.offsets.len() - 2) as u32
+    }
+
+    /// Appends a row; entries with the same index are kept separately (their
+    /// weights add up when applied). Returns the row's index.
+    pub fn push_row(&mut self, entries: impl IntoIterator<Item = (u32, f64)>) -> u32 {
+        self.open();
         for (i, w) in entries {
             self.indices.push(i);
             self.weights.push(w);
         }
-        self.offsets.push(self.indices.len() as u32);
-        (self.offsets.len() - 2) as u32
+        self.close_row()
     }
 
     /// [`StencilTable::push_row`] of a row given as a slice (one copy per
     /// array, no per-entry growth check).
     pub fn push_slice(&mut self, entries: &[(u32, f64)]) -> u32 {
-        if self.offsets.is_empty() {
-            self.offsets.push(0);
-        }
+        self.open();
         self.indices.extend(entries.iter().map(|e| e.0));
         self.weights.extend(entries.iter().map(|e| e.1));
-        self.offsets.push(self.indices.len() as u32);
-        (self.offsets.len() - 2) as u32
+        self.close_row()
     }
 
     /// Appends every row of `other` (indices as they are).
     pub fn append(&mut self, other: &StencilTable) {
-        if self.offsets.is_empty() {
-            self.offsets.push(0);
-        }
+        self.open();
         let shift = self.indices.len() as u32;
         self.offsets
             .extend(other.offsets.iter().skip(1).map(|&o| o + shift));
