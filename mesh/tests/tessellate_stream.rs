@@ -7,14 +7,16 @@
 
 mod common;
 
+use capdiv::{Point3, TensorPatch};
 use capdiv_mesh::samples;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter, StreamSummary,
-    StreamTessellator, TessellatingSink, Tessellation,
+    is_closed_and_oriented, tessellate, write_obj, BadEdge, EdgeFault, Face, MeshSink, ObjWriter,
+    PatchGeometry, StreamSummary, StreamTessellator, TessellatingSink, Tessellation,
 };
-use capdiv_mesh::{CapRecord, Evaluator, MeshInput, PatchRecord, SurfaceSink, Unit};
+use capdiv_mesh::{CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, SurfaceSink, Unit};
 use common::plan;
+use std::collections::HashMap;
 
 /// Every patch and cap, in the evaluator's order.
 type Collect = CollectSurface<f64>;
@@ -397,4 +399,136 @@ fn faces_follow_their_vertices() {
     assert_eq!(c.vertices, s.vertices);
     assert_eq!(c.faces, s.triangles + s.quads);
     assert_eq!(c.max_index as usize + 1, c.vertices);
+}
+
+/// The closedness verdict of checking every edge of `faces` in order, as the
+/// stream's module doc describes it: an edge's second use pairs it (an error
+/// where it runs the same way as the first), a third use opens it again, the
+/// first fault by the position of the edge use it names wins, and an edge
+/// left open is unpaired.
+fn in_order_verdict(faces: &[Face]) -> Result<(), BadEdge> {
+    let mut open: HashMap<(u32, u32), (u32, u32, u64, usize)> = HashMap::new();
+    let mut first: Option<(u64, BadEdge)> = None;
+    let mut seq = 0u64;
+    let blame = |first: &mut Option<(u64, BadEdge)>, at: u64, bad: BadEdge| {
+        if first.is_none_or(|(t, _)| at < t) {
+            *first = Some((at, bad));
+        }
+    };
+    for (index, f) in faces.iter().enumerate() {
+        let c = f.corners();
+        for i in 0..c.len() {
+            let (a, b) = (c[i], c[(i + 1) % c.len()]);
+            match open.remove(&(a.min(b), a.max(b))) {
+                None => {
+                    open.insert((a.min(b), a.max(b)), (a, b, seq, index));
+                }
+                Some((from, _, at, face)) if from == a => blame(
+                    &mut first,
+                    at,
+                    BadEdge {
+                        from: a,
+                        to: b,
+                        face,
+                        fault: EdgeFault::SameDirection,
+                    },
+                ),
+                Some(_) => {}
+            }
+            seq += 1;
+        }
+    }
+    for (from, to, at, face) in open.into_values() {
+        let bad = BadEdge {
+            from,
+            to,
+            face,
+            fault: EdgeFault::Unpaired,
+        };
+        blame(&mut first, at, bad);
+    }
+    match first {
+        None => Ok(()),
+        Some((_, bad)) => Err(bad),
+    }
+}
+
+/// A bicubic patch record of the plane `z = 0` over `x ∈ [x0, x0 + 1]`,
+/// `y ∈ [0, 1]`, with the control points' `x` given per row `i` (along `u`).
+fn planar(x: [f64; 4]) -> PatchRecord<f64> {
+    let mut points = [[Point3::ZERO; 4]; 4];
+    for (i, row) in points.iter_mut().enumerate() {
+        for (j, p) in row.iter_mut().enumerate() {
+            *p = Point3::new(x[i], j as f64 / 3.0, 0.0);
+        }
+    }
+    PatchRecord::new(
+        PatchKind::Regular,
+        PatchGeometry::Cubic(TensorPatch { points }),
+    )
+}
+
+/// `x ∈ [x0, x0 + 1]` at uniform speed.
+fn square(x0: f64) -> PatchRecord<f64> {
+    planar([x0, x0 + 1.0 / 3.0, x0 + 2.0 / 3.0, x0 + 1.0])
+}
+
+/// [`square`] facing the other way (`x` from `x0 + 1` down to `x0`).
+fn reversed(x0: f64) -> PatchRecord<f64> {
+    planar([x0 + 1.0, x0 + 2.0 / 3.0, x0 + 1.0 / 3.0, x0])
+}
+
+#[test]
+fn closedness_verdict_is_that_of_checking_every_edge_in_order() {
+    // The stream checks the edges at a sample inside a patch's lattice only
+    // when the patch's samples did not weld together or into older
+    // vertices; these sequences make both happen.
+    let fine = 1e-9;
+    let mut cases: Vec<(String, Vec<PatchRecord<f64>>, f64)> = [
+        (
+            "two squares side by side",
+            vec![square(0.0), square(1.0)],
+            fine,
+        ),
+        ("a square twice", vec![square(0.0), square(0.0)], fine),
+        // x = 3u(1 − u): u and 1 − u sample the same points.
+        ("a folded patch", vec![planar([0.0, 1.5, 1.5, 0.0])], fine),
+        ("a patch collapsed to a line", vec![planar([0.0; 4])], fine),
+        // Samples a quarter apart weld together inside the patch.
+        ("a square welded across its samples", vec![square(0.0)], 0.3),
+        // Interior samples of the later patches weld into older vertices.
+        (
+            "a reversed square over two squares' seam",
+            vec![square(1.0), reversed(0.5)],
+            fine,
+        ),
+        (
+            "reversed squares over a square's sides",
+            vec![square(1.0), reversed(0.25), reversed(1.25)],
+            fine,
+        ),
+        (
+            "a square, a fold, a square",
+            vec![square(0.0), planar([1.0, 2.5, 2.5, 1.0]), square(1.0)],
+            fine,
+        ),
+    ]
+    .into_iter()
+    .map(|(name, ps, tol)| (name.to_string(), ps, tol))
+    .collect();
+    for (name, mesh) in meshes() {
+        let tol = weld_tolerance(&mesh);
+        cases.push((name.to_string(), patches(&mesh, 2), tol));
+    }
+    let mut faults = 0;
+    for (name, ps, tol) in &cases {
+        for grid in [1, 2, 4] {
+            let (got, s) = streamed(ps, grid, *tol);
+            let expected = in_order_verdict(&got.faces);
+            assert_eq!(s.closed, expected, "{name}, grid {grid}");
+            faults += usize::from(expected.is_err());
+        }
+    }
+    // The degenerate sequences do exercise faults (open meshes add more).
+    assert!(faults >= 12, "{faults} faulty cases");
 }

@@ -16,8 +16,10 @@ pub(super) struct Raw<R> {
     grid: usize,
     /// `t[k] = k / (2n)`, `k = 0..=2n` (grid parameters are `t[2a]`).
     params: Vec<R>,
-    /// The current patch's layout.
-    layout: PatchLayout,
+    /// The layouts met so far, by `split << 4 | hole` (`n` is `grid`; a
+    /// layout with no samples is not built yet): built once each, not once
+    /// per patch.
+    layouts: Vec<PatchLayout>,
     /// Sample positions.
     pub positions: Vec<Point3<R>>,
     /// Per sample: its unit normal (zero where degenerate), `None` for a hole point.
@@ -42,7 +44,7 @@ impl<R: Real> Raw<R> {
         Raw {
             grid,
             params,
-            layout: PatchLayout::default(),
+            layouts: alloc::vec![PatchLayout::default(); 256],
             positions: Vec::new(),
             normals: Vec::new(),
             faces: Vec::new(),
@@ -54,8 +56,11 @@ impl<R: Real> Raw<R> {
 
     /// Samples and triangulates `p`, its faces tagged `tag`.
     pub fn push(&mut self, p: &PatchRecord<R>, tag: u32) {
-        let mut layout = core::mem::take(&mut self.layout);
-        layout.set(&Sampling::Uniform(self.grid), p);
+        let sampling = Sampling::Uniform(self.grid);
+        let split = sampling.split_edges(p.level, p.finer);
+        let which = usize::from(split) << 4 | usize::from(p.hole & 0xf);
+        let mut layout = core::mem::take(&mut self.layouts[which]);
+        layout.set(&sampling, p);
         let start = self.positions.len();
         match &p.geometry {
             PatchGeometry::Cubic(g) => self.push_samples(g, p, &layout),
@@ -69,7 +74,7 @@ impl<R: Real> Raw<R> {
         if let Some(uv) = &p.uv {
             self.push_uvs(uv, &layout, start);
         }
-        self.layout = layout;
+        self.layouts[which] = layout;
     }
 
     /// The positions and normals of `layout`'s samples of `g`, the lattice

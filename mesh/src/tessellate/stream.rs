@@ -119,6 +119,8 @@ const CELL: f64 = 32.0;
 struct Slot<R> {
     /// The next slot of its cell.
     next: u32,
+    /// Its cell's name in the table ([`cell_name`]).
+    cell: u64,
     vertex: u32,
     /// Quarter turns covered so far (saturating).
     turns: u8,
@@ -133,6 +135,8 @@ struct Slot<R> {
     done: bool,
     /// Its place in the waiting queue (absolute), when not handed over.
     seq: u64,
+    /// The last patch that sampled it ([`StreamTessellator::patches`]).
+    patch: u64,
 }
 
 /// Output waiting for a vertex's normal.
@@ -144,6 +148,44 @@ enum Waiting<R> {
 /// A point's coordinates in `f64`, `−0` made `+0`: what welding compares.
 fn weld_coordinates<R: Real>(p: Point3<R>) -> [f64; 3] {
     p.0.map(|c| c.to_f64() + 0.0)
+}
+
+/// `floor(q)` as an `i64`, saturating, NaN taken as 0: what
+/// `libm::floor(q) as i64` gives, without the bit-level `floor` (a truncating
+/// cast and one comparison).
+#[inline]
+fn floor_to_i64(q: f64) -> i64 {
+    let t = q as i64;
+    if t as f64 > q {
+        t.saturating_sub(1)
+    } else {
+        t
+    }
+}
+
+/// One number naming a cell of the weld grid. Two cells may share a name:
+/// their slots then share a chain, which only lengthens the search (every
+/// candidate's distance is checked), never changes what it finds.
+#[inline]
+fn cell_name(key: [i64; 3]) -> u64 {
+    (key[0] as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ (key[1] as u64)
+            .wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+            .rotate_left(21)
+        ^ (key[2] as u64)
+            .wrapping_mul(0x1656_67B1_9E37_79F9)
+            .rotate_left(42)
+}
+
+/// `|x / cell|` below which the fraction of `x / cell` is meaningful to
+/// well within `1 / CELL` (its rounding error is below `2⁻⁴⁴`).
+const FRACTION_MEANINGFUL: f64 = (1u64 << 40) as f64;
+
+/// A point's weld cell and the range of cells a search covers, per axis.
+struct Near {
+    key: [i64; 3],
+    lo: [i64; 3],
+    hi: [i64; 3],
 }
 
 /// An edge used by one face so far.
@@ -159,7 +201,8 @@ pub struct StreamTessellator<R> {
     raw: Raw<R>,
     grid: usize,
     tol: f64,
-    cells: HashMap<[i64; 3], u32>,
+    /// The first slot of each cell, by [`cell_name`].
+    cells: HashMap<u64, u32>,
     slots: Vec<Slot<R>>,
     free: Vec<u32>,
     /// Per slot of hole points only: twice the vector area of its faces.
@@ -169,6 +212,13 @@ pub struct StreamTessellator<R> {
     local: Vec<u32>,
     turns: Vec<u8>,
     pin: Vec<bool>,
+    /// Per sample of the current patch: inside its lattice (not on the
+    /// square's sides), then: its edges need no closedness check.
+    interior: Vec<bool>,
+    /// Patches pushed so far.
+    patches: u64,
+    /// No two samples of the current patch welded into one vertex.
+    injective: bool,
     /// The current group (`None` before the first patch).
     group: Option<Option<u32>>,
     pins: Vec<u32>,
@@ -198,6 +248,9 @@ impl<R: Real> StreamTessellator<R> {
             local: Vec::new(),
             turns: Vec::new(),
             pin: Vec::new(),
+            interior: Vec::new(),
+            patches: 0,
+            injective: true,
             group: None,
             pins: Vec::new(),
             queue: VecDeque::new(),
@@ -247,9 +300,22 @@ impl<R: Real> StreamTessellator<R> {
         let count = self.raw.positions.len();
         self.summary.samples += count;
         self.local.clear();
+        self.patches += 1;
+        self.injective = true;
+        let first_vertex = self.summary.vertices;
         for k in 0..count {
             let s = self.weld(k);
             self.local.push(s);
+        }
+        // An interior sample whose vertex this patch made, in a patch whose
+        // samples all have vertices of their own: its faces are those of the
+        // layout around it, which pair each of its edges once each way
+        // (an oriented disk), and no other patch reaches the vertex (it
+        // leaves the table after this patch).
+        for k in 0..count {
+            self.interior[k] = self.interior[k]
+                && self.injective
+                && self.slots[self.local[k] as usize].vertex as usize >= first_vertex;
         }
         for f in 0..self.raw.faces.len() {
             let (face, tag) = (self.raw.faces[f], self.raw.tags[f]);
@@ -329,6 +395,7 @@ impl<R: Real> StreamTessellator<R> {
         let count = self.raw.positions.len();
         self.turns.clear();
         self.pin.clear();
+        self.interior.clear();
         for k in 0..count {
             let t = if k < side * side {
                 let (a, b) = (k / side, k % side);
@@ -342,6 +409,7 @@ impl<R: Real> StreamTessellator<R> {
             };
             self.turns.push(t);
             self.pin.push(false);
+            self.interior.push(t == WHOLE);
         }
         let idx = |a: usize, b: usize| a * side + b;
         // Corner `e` of the square (edge `e` runs from corner `e` to `e + 1`)
@@ -401,11 +469,16 @@ impl<R: Real> StreamTessellator<R> {
     fn weld(&mut self, k: usize) -> u32 {
         let position = self.raw.positions[k];
         let x = weld_coordinates(position);
-        let s = match self.find(&x) {
+        let near = self.near(&x);
+        let s = match self.find(&x, &near) {
             Some(s) => s,
-            None => self.insert(&x, position),
+            None => self.insert(cell_name(near.key), position),
         };
         let new = self.slots[s as usize].vertex == NONE;
+        if self.slots[s as usize].patch == self.patches {
+            self.injective = false;
+        }
+        self.slots[s as usize].patch = self.patches;
         {
             let slot = &mut self.slots[s as usize];
             slot.turns = slot.turns.saturating_add(self.turns[k]);
@@ -440,36 +513,26 @@ impl<R: Real> StreamTessellator<R> {
         s
     }
 
-    /// The slot of the lowest-numbered vertex within the tolerance of `x`.
-    fn find(&self, x: &[f64; 3]) -> Option<u32> {
+    /// The slot of the lowest-numbered vertex within the tolerance of `x`,
+    /// searched in the cells `near` names ([`Self::near`]).
+    fn find(&self, x: &[f64; 3], near: &Near) -> Option<u32> {
         let tol = self.tol;
         let mut best: Option<u32> = None;
-        let mut consider = |s: u32| {
-            let slot = &self.slots[s as usize];
-            let y = weld_coordinates(slot.position);
-            if (0..3).all(|d| libm::fabs(x[d] - y[d]) <= tol)
-                && best.is_none_or(|b| slot.vertex < self.slots[b as usize].vertex)
-            {
-                best = Some(s);
-            }
-        };
-        if tol == 0.0 {
-            let mut s = self.cells.get(&self.key(x)).copied().unwrap_or(NONE);
-            while s != NONE {
-                consider(s);
-                s = self.slots[s as usize].next;
-            }
-            return best;
-        }
-        let lo = x.map(|c| self.key_of(c - tol));
-        let hi = x.map(|c| self.key_of(c + tol));
-        for i in lo[0]..=hi[0].min(lo[0].saturating_add(1)) {
-            for j in lo[1]..=hi[1].min(lo[1].saturating_add(1)) {
-                for l in lo[2]..=hi[2].min(lo[2].saturating_add(1)) {
-                    let mut s = self.cells.get(&[i, j, l]).copied().unwrap_or(NONE);
+        let (lo, hi) = (near.lo, near.hi);
+        for i in lo[0]..=hi[0] {
+            for j in lo[1]..=hi[1] {
+                for l in lo[2]..=hi[2] {
+                    let name = cell_name([i, j, l]);
+                    let mut s = self.cells.get(&name).copied().unwrap_or(NONE);
                     while s != NONE {
-                        consider(s);
-                        s = self.slots[s as usize].next;
+                        let slot = &self.slots[s as usize];
+                        let y = weld_coordinates(slot.position);
+                        if (0..3).all(|d| libm::fabs(x[d] - y[d]) <= tol)
+                            && best.is_none_or(|b| slot.vertex < self.slots[b as usize].vertex)
+                        {
+                            best = Some(s);
+                        }
+                        s = slot.next;
                     }
                 }
             }
@@ -477,25 +540,54 @@ impl<R: Real> StreamTessellator<R> {
         best
     }
 
-    fn key_of(&self, x: f64) -> i64 {
+    /// The cell of `x` and the cells around it that may hold a point within
+    /// the tolerance. A cell is [`CELL`] tolerances wide, so a point within
+    /// the tolerance lies in the cell of `x` or, when `x` is within a
+    /// tolerance of a cell face, in the neighbour across it; the neighbour is
+    /// searched whenever `x` is within two tolerances of the face (room for
+    /// the rounding of `x / cell`), and both neighbours where `x / cell` is
+    /// too large for its fraction to mean anything. Searching more cells
+    /// than hold candidates finds the same vertex. With a zero tolerance the
+    /// cell is the exact coordinates.
+    fn near(&self, x: &[f64; 3]) -> Near {
         if self.tol == 0.0 {
-            x.to_bits() as i64
-        } else {
-            // Saturating cast; NaN gives 0.
-            libm::floor(x / (CELL * self.tol)) as i64
+            let key = x.map(|c| c.to_bits() as i64);
+            return Near {
+                key,
+                lo: key,
+                hi: key,
+            };
         }
+        let cell = CELL * self.tol;
+        let mut near = Near {
+            key: [0; 3],
+            lo: [0; 3],
+            hi: [0; 3],
+        };
+        for (d, &c) in x.iter().enumerate() {
+            let q = c / cell;
+            // Saturating; NaN gives 0.
+            let k = floor_to_i64(q);
+            let (below, above) = if libm::fabs(q) < FRACTION_MEANINGFUL {
+                let f = q - k as f64;
+                (f < 2.0 / CELL, f > 1.0 - 2.0 / CELL)
+            } else {
+                (true, true)
+            };
+            near.key[d] = k;
+            near.lo[d] = if below { k.saturating_sub(1) } else { k };
+            near.hi[d] = if above { k.saturating_add(1) } else { k };
+        }
+        near
     }
 
-    fn key(&self, x: &[f64; 3]) -> [i64; 3] {
-        x.map(|c| self.key_of(c))
-    }
-
-    /// A new slot for a new vertex (its number set by the caller).
-    fn insert(&mut self, x: &[f64; 3], position: Point3<R>) -> u32 {
-        let key = self.key(x);
-        let head = self.cells.get(&key).copied().unwrap_or(NONE);
+    /// A new slot for a new vertex in cell `cell` (its number set by the
+    /// caller).
+    fn insert(&mut self, cell: u64, position: Point3<R>) -> u32 {
+        let head = self.cells.get(&cell).copied().unwrap_or(NONE);
         let slot = Slot {
             next: head,
+            cell,
             vertex: NONE,
             turns: 0,
             pinned: false,
@@ -505,6 +597,7 @@ impl<R: Real> StreamTessellator<R> {
             sampled: false,
             done: false,
             seq: 0,
+            patch: 0,
         };
         let s = match self.free.pop() {
             Some(s) => {
@@ -516,7 +609,7 @@ impl<R: Real> StreamTessellator<R> {
                 (self.slots.len() - 1) as u32
             }
         };
-        self.cells.insert(key, s);
+        self.cells.insert(cell, s);
         self.live += 1;
         self.summary.peak_weld = self.summary.peak_weld.max(self.live);
         s
@@ -526,7 +619,7 @@ impl<R: Real> StreamTessellator<R> {
     fn evict(&mut self, s: u32) {
         self.finalize(s);
         self.areas.remove(&s);
-        let key = self.key(&weld_coordinates(self.slots[s as usize].position));
+        let key = self.slots[s as usize].cell;
         let next = self.slots[s as usize].next;
         let head = self.cells.get(&key).copied().unwrap_or(NONE);
         if head == s {
@@ -609,8 +702,15 @@ impl<R: Real> StreamTessellator<R> {
             Face::Quad(_) => self.summary.quads += 1,
         }
         let v = face.corners();
+        let k = f.corners();
         for i in 0..v.len() {
-            self.edge(v[i], v[(i + 1) % v.len()], index);
+            let j = (i + 1) % v.len();
+            if self.interior[k[i] as usize] || self.interior[k[j] as usize] {
+                // Paired inside this patch (see `push`); numbered all the same.
+                self.edge_seq += 1;
+            } else {
+                self.edge(v[i], v[j], index);
+            }
         }
         self.queue.push_back(Waiting::Face(face, tag));
     }
@@ -745,5 +845,53 @@ impl<R: Real + Display + LowerExp, W: Write> MeshSink<R> for ObjWriter<W> {
         self.line.clear();
         super::obj::write_face(&mut self.line, face.corners(), false);
         self.error = self.out.write_str(&self.line);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::floor_to_i64;
+    use alloc::vec;
+
+    #[test]
+    fn floor_to_i64_is_libm_floor_cast_saturating() {
+        let big = libm::exp2(63.0);
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.0,
+            -1.0,
+            -1.0 - f64::EPSILON,
+            1.0 - f64::EPSILON / 2.0,
+            -(1.0 - f64::EPSILON / 2.0),
+            4_503_599_627_370_495.5,
+            -4_503_599_627_370_495.5,
+            big,
+            -big,
+            big - 1024.0,
+            -(big - 1024.0),
+            2.0 * big,
+            -2.0 * big,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        // A spread of magnitudes and fractions, both signs.
+        for e in -40..70 {
+            for f in [0.1, 0.25, 0.999_999, 1.0, 1.5, 3.7] {
+                let x = f * libm::exp2(f64::from(e));
+                values.push(x);
+                values.push(-x);
+            }
+        }
+        for x in values {
+            assert_eq!(floor_to_i64(x), libm::floor(x) as i64, "x = {x:e}");
+        }
     }
 }
