@@ -147,23 +147,31 @@ if [ "$callgrind" = 1 ]; then
         grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv_mesh::' | awk 'NR <= 12' |
         sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
     echo
-    echo "### Where capdiv's welded OBJ tessellation of torus-ev-1e4 spends its instructions (callgrind, self cost)"
+    echo "### capdiv's welded OBJ, streamed as \`capdiv surface\` writes it (callgrind, f64, grid 4)"
     echo
-    valgrind --tool=callgrind --toggle-collect=capdiv_tessellate_obj \
-        --callgrind-out-file="$tmp/tess.out" "$bin" --tessellate torus-ev-1e4 \
-        >"$tmp/tess.txt" 2>"$tmp/tess.err"
-    patches=$(sed -n 's/^patches //p' "$tmp/tess.txt")
-    collected "$tmp/tess.err" | awk -v p="$patches" \
-        '{ printf "%.0f instructions per face, %.0f per patch (grid 4); top functions:\n", $1 / 10000, $1 / p }'
+    echo "| mesh | evaluating the patches | + sampling, weld and assembly | + OBJ text | sampling alone | weld and assembly ÷ evaluating and sampling |"
+    echo "|---|--:|--:|--:|--:|--:|"
+    for mesh in torus-ev-1e4 torus-features-1e4; do
+        for f in capdiv_stream_evaluate capdiv_stream_count capdiv_stream_obj; do
+            valgrind --tool=callgrind --toggle-collect=$f \
+                --callgrind-out-file="$tmp/$mesh-$f.out" "$bin" --stream $mesh \
+                >"$tmp/stream.txt" 2>"$tmp/$mesh-$f.err"
+        done
+        e=$(collected "$tmp/$mesh-capdiv_stream_evaluate.err")
+        c=$(collected "$tmp/$mesh-capdiv_stream_count.err")
+        o=$(collected "$tmp/$mesh-capdiv_stream_obj.err")
+        s=$(inclusive "$tmp/$mesh-capdiv_stream_count.out" "sample::Raw<R>::push")
+        faces=$(sed -n 's/^faces //p' "$tmp/stream.txt")
+        awk -v m="$mesh" -v f="$faces" -v e="$e" -v c="$c" -v o="$o" -v s="$s" 'BEGIN {
+            w = c - e - s
+            printf "| %s | %.0f | %.0f | %.0f | %.0f | %.2f |\n", m, e / f, (c - e) / f, (o - c) / f, s / f, w / (e + s)
+        }'
+    done
     echo
-    callgrind_annotate --threshold=95 "$tmp/tess.out" 2>/dev/null |
+    echo "Instructions per input face. Where the OBJ of torus-ev-1e4 spends them (self cost):"
+    echo
+    callgrind_annotate --threshold=95 "$tmp/torus-ev-1e4-capdiv_stream_obj.out" 2>/dev/null |
         grep -E '^ *[0-9,]+ \(' | grep -v 'PROGRAM TOTALS' | awk 'NR <= 10' |
-        sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
-    echo
-    echo "Including callees:"
-    echo
-    callgrind_annotate --inclusive=yes --threshold=100 "$tmp/tess.out" 2>/dev/null |
-        grep -E '^ *[0-9,]+ \(' | grep -E 'capdiv_mesh::|capdiv::' | awk 'NR <= 8' |
         sed -E 's/^ *([0-9,]+) \( *([0-9.]+%)\) +[^:]*:(.*) \[.*\]$/- \2 \1 `\3`/'
 fi
 echo

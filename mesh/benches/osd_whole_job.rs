@@ -30,27 +30,32 @@
 //! Also: capdiv's f64 samples against OpenSubdiv's (the same on regular
 //! faces; EG caps are not Gregory end caps), each library's f32 normals
 //! against its own f64 normals, and capdiv's welded OBJ tessellation
-//! ([`tessellate`] at the CLI's default grid 4, welded within 1e-9 of the
-//! bounding box as `capdiv surface` does, then [`write_obj`]) against
-//! evaluating the same patches.
+//! streamed as `capdiv surface` writes it ([`StreamTessellator`] at the
+//! CLI's default grid 4, welded within 1e-9 of the bounding box, into
+//! [`ObjWriter`]) against evaluating the same patches.
 //!
 //! `cargo bench -p capdiv-mesh --bench osd_whole_job` prints markdown
 //! tables (`-- --only NAME,NAME` for some meshes). For instruction counts
 //! (`scripts/osd-whole-job.sh`): `-- --prepare NAME` writes the mesh's job
 //! file and prints the helper's and the job's paths, `-- --once NAME f64|f32`
 //! runs the whole job once inside `capdiv_whole_job_f64` or `_f32`,
-//! `-- --tessellate NAME` the welded OBJ tessellation once inside
-//! `capdiv_tessellate_obj`.
+//! `-- --stream NAME` one evaluation each inside `capdiv_stream_evaluate`
+//! (patches to a sink that counts them), `capdiv_stream_count` (streamed
+//! through the welded tessellation into a sink that counts) and
+//! `capdiv_stream_obj` (into OBJ text).
 
 #[path = "osd/common.rs"]
 mod common;
 #[path = "../tests/osd/mod.rs"]
 mod osd;
 
+use capdiv::Point3;
 use capdiv::Real;
 use capdiv_mesh::samples::{ev_torus, feature_torus};
 use capdiv_mesh::sinks::PatchCounts;
-use capdiv_mesh::tessellate::{tessellate, write_obj, PatchGeometry};
+use capdiv_mesh::tessellate::{
+    Face, MeshSink, ObjWriter, PatchGeometry, StreamTessellator, TessellatingSink,
+};
 use capdiv_mesh::{samples, CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord};
 use capdiv_mesh::{PlanOptions, SurfacePlan, SurfaceSink};
 use common::{helper, job_file, time, DEPTH};
@@ -173,17 +178,6 @@ impl<R: Real> SurfaceSink<R> for GridSink<'_, R> {
         }
     }
     fn cap(&mut self, _: &CapRecord<R>) {}
-}
-
-/// Keeps the patches.
-#[derive(Default)]
-struct Keep(Vec<PatchRecord<f64>>);
-
-impl SurfaceSink<f64> for Keep {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0.push(p.clone());
-    }
-    fn cap(&mut self, _: &CapRecord<f64>) {}
 }
 
 fn positions<R: Real>(mesh: &MeshInput, scale: f64) -> Vec<[R; 3]> {
@@ -348,14 +342,83 @@ fn measure_side<R: Real>(mesh: &MeshInput) -> Side<R> {
     }
 }
 
-/// The welded OBJ tessellation of `patches` (grid [`TESS_GRID`], welded
-/// within `tol`, faces tagged by level), for callgrind's `--toggle-collect`:
-/// the OBJ text's length.
+/// Counts what a streamed tessellation hands over.
+#[derive(Default)]
+struct CountMesh(usize, usize);
+
+impl MeshSink<f64> for CountMesh {
+    fn vertex(&mut self, _: Point3<f64>, _: Point3<f64>) {
+        self.0 += 1;
+    }
+    fn face(&mut self, _: Face, _: u32) {
+        self.1 += 1;
+    }
+}
+
+/// Counts patches.
+#[derive(Default)]
+struct CountPatches(usize);
+
+impl SurfaceSink<f64> for CountPatches {
+    fn patch(&mut self, p: &PatchRecord<f64>) {
+        black_box(p);
+        self.0 += 1;
+    }
+    fn cap(&mut self, _: &CapRecord<f64>) {}
+}
+
+/// One evaluation of the patches, handed to a sink that only counts them:
+/// what the streamed tessellation adds to.
 #[no_mangle]
 #[inline(never)]
-fn capdiv_tessellate_obj(patches: &[PatchRecord<f64>], tol: f64) -> usize {
-    let tagged = patches.iter().map(|p| (p, p.level));
-    write_obj(&tessellate(tagged, TESS_GRID, tol), &[]).len()
+fn capdiv_stream_evaluate(ev: &mut Evaluator<f64>, mesh: &MeshInput) -> usize {
+    let mut count = CountPatches::default();
+    ev.evaluate(&mesh.vertices, &mut count).expect("evaluate");
+    count.0
+}
+
+/// One evaluation streamed through the CLI's welded tessellation (grid
+/// [`TESS_GRID`], welded within `tol`, faces tagged by level), into a sink
+/// that counts (`text` false) or the OBJ text (`text` true).
+#[inline(always)]
+fn stream_tessellate(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64, text: bool) -> usize {
+    let mut tess = StreamTessellator::new(TESS_GRID, tol);
+    let tag: fn(&PatchRecord<f64>) -> u32 = |p| p.level;
+    if text {
+        let mut out = ObjWriter::new(String::new(), &[]);
+        let mut sink = TessellatingSink {
+            tess: &mut tess,
+            out: &mut out,
+            tag,
+        };
+        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
+        tess.finish(&mut out);
+        out.out.len()
+    } else {
+        let mut out = CountMesh::default();
+        let mut sink = TessellatingSink {
+            tess: &mut tess,
+            out: &mut out,
+            tag,
+        };
+        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
+        tess.finish(&mut out);
+        out.0 + out.1
+    }
+}
+
+/// [`stream_tessellate`] into a counting sink, for callgrind.
+#[no_mangle]
+#[inline(never)]
+fn capdiv_stream_count(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> usize {
+    stream_tessellate(ev, mesh, tol, false)
+}
+
+/// [`stream_tessellate`] into OBJ text, for callgrind.
+#[no_mangle]
+#[inline(never)]
+fn capdiv_stream_obj(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> usize {
+    stream_tessellate(ev, mesh, tol, true)
 }
 
 /// Median seconds of three calls of `f` (the tessellation takes seconds on
@@ -372,32 +435,35 @@ fn median_of_3(mut f: impl FnMut()) -> f64 {
     t[1]
 }
 
-/// capdiv's welded OBJ tessellation of the f64 patches, seconds per mesh:
-/// (tessellate, write_obj, evaluate into a patch list, patches, output
-/// vertices).
+/// capdiv's welded OBJ tessellation streamed from the evaluation, seconds
+/// per mesh: (evaluating the patches only, the evaluation streamed through
+/// the tessellation into a counting sink, the same into OBJ text, patches,
+/// output vertices).
 fn measure_tessellation(mesh: &MeshInput) -> (f64, f64, f64, usize, usize) {
     let plan = capdiv_job_analyse(mesh);
     let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-    let (collect, _) = time(|| {
-        let mut k = Keep::default();
-        ev.evaluate(&mesh.vertices, &mut k).expect("evaluate");
-        black_box(k.0.len());
-    });
-    let mut keep = Keep::default();
-    ev.evaluate(&mesh.vertices, &mut keep).expect("evaluate");
     let tol = WELD * size(mesh);
-    let tess = median_of_3(|| {
-        black_box(tessellate(
-            keep.0.iter().map(|p| (p, p.level)),
-            TESS_GRID,
-            tol,
-        ));
-    });
-    let t = tessellate(keep.0.iter().map(|p| (p, p.level)), TESS_GRID, tol);
+    let mut patches = 0;
+    let evaluate = median_of_3(|| patches = capdiv_stream_evaluate(&mut ev, mesh));
+    let mut handed = 0;
+    let count = median_of_3(|| handed = capdiv_stream_count(&mut ev, mesh, tol));
     let obj = median_of_3(|| {
-        black_box(write_obj(&t, &[]));
+        black_box(capdiv_stream_obj(&mut ev, mesh, tol));
     });
-    (tess, obj, collect, keep.0.len(), t.positions.len())
+    let faces = {
+        let mut tess = StreamTessellator::new(TESS_GRID, tol);
+        let mut out = CountMesh::default();
+        let tag: fn(&PatchRecord<f64>) -> u32 = |p| p.level;
+        let mut sink = TessellatingSink {
+            tess: &mut tess,
+            out: &mut out,
+            tag,
+        };
+        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
+        tess.finish(&mut out);
+        out.1
+    };
+    (evaluate, count, obj, patches, handed - faces)
 }
 
 /// The largest side of the bounding box.
@@ -474,7 +540,8 @@ struct Row {
     /// capdiv against OpenSubdiv, f64: largest |Δp| / size, largest |Δn|,
     /// samples with |Δp| > 1e-9 of the size.
     cross: (f64, f64, usize),
-    /// tessellate, write_obj, evaluate into a list, patches, vertices.
+    /// Evaluate only, streamed tessellation, the same to OBJ text; patches,
+    /// vertices ([`measure_tessellation`]).
     tess: (f64, f64, f64, usize, usize),
 }
 
@@ -602,16 +669,18 @@ fn print_tables(rows: &[Row]) {
             [r.c64.reeval * 1e9 / f, r.c32.reeval * 1e9 / f],
             "ns/face",
         );
-        let (tess, obj, collect, patches, verts) = r.tess;
+        let (evaluate, count, obj, patches, verts) = r.tess;
         println!(
-            "| capdiv's welded OBJ tessellation, f64, grid {TESS_GRID} ({patches} patches, {verts} vertices): \
-             `tessellate` + `write_obj` | — | {:.0} + {:.0} ns/face | {:.1}× evaluating the patches \
-             ({:.0} ns/face into a list), {:.1}× the whole job | | | |",
-            tess * 1e9 / f,
-            obj * 1e9 / f,
-            (tess + obj) / collect,
-            collect * 1e9 / f,
-            (tess + obj) / r.c64.total,
+            "| capdiv's welded OBJ streamed as `capdiv surface` writes it, f64, grid {TESS_GRID} \
+             ({patches} patches, {verts} vertices): sampling, weld and assembly + text | — | \
+             {:.0} + {:.0} ns/face | {:.1}× evaluating the patches ({:.0} ns/face; {:.1}× without \
+             the text), {:.1}× the whole job | | | |",
+            (count - evaluate) * 1e9 / f,
+            (obj - count) * 1e9 / f,
+            (obj - evaluate) / evaluate,
+            evaluate * 1e9 / f,
+            (count - evaluate) / evaluate,
+            (obj - evaluate) / r.c64.total,
         );
         println!(
             "| f32 normals vs own f64 normals, max \\|n32 − n64\\| | {:.1e} | {:.1e} | | | | |",
@@ -658,17 +727,15 @@ fn main() {
         println!("covered {covered}");
         return;
     }
-    if let Some(name) = value("--tessellate") {
+    if let Some(name) = value("--stream") {
         let case = cases(&|n| n == name).pop().expect("unknown mesh");
         let plan = capdiv_job_analyse(&case.mesh);
         let mut ev = Evaluator::<f64>::new(&plan).expect("evaluator");
-        let mut keep = Keep::default();
-        ev.evaluate(&case.mesh.vertices, &mut keep)
-            .expect("evaluate");
-        let bytes = capdiv_tessellate_obj(&keep.0, WELD * size(&case.mesh));
+        let tol = WELD * size(&case.mesh);
         println!("faces {}", case.mesh.faces.len());
-        println!("patches {}", keep.0.len());
-        println!("bytes {bytes}");
+        println!("patches {}", capdiv_stream_evaluate(&mut ev, &case.mesh));
+        println!("handed {}", capdiv_stream_count(&mut ev, &case.mesh, tol));
+        println!("bytes {}", capdiv_stream_obj(&mut ev, &case.mesh, tol));
         return;
     }
     if let Some(name) = value("--prepare") {
