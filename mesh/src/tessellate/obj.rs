@@ -97,7 +97,13 @@ pub fn write_number<R: Real + Display + LowerExp>(text: &mut String, x: R) {
     };
     // Ryū writes integers as `100.0` and, between `1e-5` and `1e16`
     // (`1e-6`, `1e13` for `f32`), the rest positionally as `core::fmt`
-    // does: then only the exponent form may remain to be considered.
+    // does: then only the exponent form may remain to be considered. Most
+    // coordinates and normal components lie where the positional form is
+    // kept whatever its length, which needs no look at the text.
+    if (1e-3..1e7).contains(&x.to_f64().abs()) {
+        text.push_str(ryu_text.strip_suffix(".0").unwrap_or(ryu_text));
+        return;
+    }
     if !ryu_text.contains('e') {
         let positional = ryu_text.strip_suffix(".0").unwrap_or(ryu_text);
         if positional.len() <= 8 || (1e-3..1e7).contains(&x.to_f64().abs()) {

@@ -213,8 +213,14 @@ pub struct StreamTessellator<R> {
     turns: Vec<u8>,
     pin: Vec<bool>,
     /// Per sample of the current patch: inside its lattice (not on the
-    /// square's sides), then: its edges need no closedness check.
+    /// square's sides).
     interior: Vec<bool>,
+    /// What `turns`, `pin` and `interior` were classified for: the sample
+    /// count and the record's boundary, hole and finer bits.
+    classified: Option<(usize, u8, u8, u8)>,
+    /// Per sample of the current patch: its edges need no closedness check
+    /// (see `push`).
+    paired_here: Vec<bool>,
     /// Patches pushed so far.
     patches: u64,
     /// No two samples of the current patch welded into one vertex.
@@ -249,6 +255,8 @@ impl<R: Real> StreamTessellator<R> {
             turns: Vec::new(),
             pin: Vec::new(),
             interior: Vec::new(),
+            classified: None,
+            paired_here: Vec::new(),
             patches: 0,
             injective: true,
             group: None,
@@ -312,10 +320,12 @@ impl<R: Real> StreamTessellator<R> {
         // layout around it, which pair each of its edges once each way
         // (an oriented disk), and no other patch reaches the vertex (it
         // leaves the table after this patch).
+        self.paired_here.clear();
         for k in 0..count {
-            self.interior[k] = self.interior[k]
+            let here = self.interior[k]
                 && self.injective
                 && self.slots[self.local[k] as usize].vertex as usize >= first_vertex;
+            self.paired_here.push(here);
         }
         for f in 0..self.raw.faces.len() {
             let (face, tag) = (self.raw.faces[f], self.raw.tags[f]);
@@ -393,6 +403,11 @@ impl<R: Real> StreamTessellator<R> {
         let n = self.grid;
         let side = n + 1;
         let count = self.raw.positions.len();
+        let key = (count, boundary, p.hole & 0xf, p.finer & 0xf);
+        if self.classified == Some(key) {
+            return;
+        }
+        self.classified = Some(key);
         self.turns.clear();
         self.pin.clear();
         self.interior.clear();
@@ -705,7 +720,7 @@ impl<R: Real> StreamTessellator<R> {
         let k = f.corners();
         for i in 0..v.len() {
             let j = (i + 1) % v.len();
-            if self.interior[k[i] as usize] || self.interior[k[j] as usize] {
+            if self.paired_here[k[i] as usize] || self.paired_here[k[j] as usize] {
                 // Paired inside this patch (see `push`); numbered all the same.
                 self.edge_seq += 1;
             } else {
