@@ -6,7 +6,8 @@
 //! tags (creases, corners, holes, boundary rule, crease method; sharpness any
 //! `f32`, indices sometimes out of range), through `SurfacePlan::for_mesh`
 //! (depth 1–3, `catmull_clark` on or off), `Evaluator` (f64 or f32, by a bit
-//! of the first byte), `tessellate` and `is_closed_and_oriented`. A bit of the
+//! of the first byte), `tessellate` and `is_closed_and_oriented`, and the
+//! same patches through the streaming weld (`StreamTessellator`). A bit of the
 //! first byte also runs the tagless path `Topology::new` + `SurfacePlan::new`.
 //!
 //! First byte: bit 0 OBJ text (0) or face list (1); bit 1 `catmull_clark`;
@@ -17,7 +18,10 @@
 //! `for_mesh` succeeds on every mesh it documents as accepted (faces of ≥ 3
 //! in-range vertices, a vertex listed twice included, finite positions, tag
 //! indices in range) and leaves no face uncovered; every successful evaluation is finite (any magnitude);
-//! the tessellation (up to 2000 patches) indexes its own vertices; and when
+//! the tessellation (up to 2000 patches) indexes its own vertices, and so
+//! does the streamed one, whose closedness verdict is that of checking each
+//! of its faces' edges in order (it skips the edges its module doc says need
+//! no check); and when
 //! the input is a closed, consistently oriented manifold (`Topology::new`
 //! succeeds, `is_closed`) without hole tags, the f64 surface at generic
 //! vertex positions tessellates to a closed, consistently oriented mesh.
@@ -30,12 +34,16 @@ use capdiv::Point3;
 use capdiv_fuzz::FuzzReal;
 use capdiv_mesh::obj::parse_obj;
 use capdiv_mesh::sinks::CollectSurface;
-use capdiv_mesh::tessellate::{is_closed_and_oriented, tessellate, PatchGeometry};
+use capdiv_mesh::tessellate::{
+    is_closed_and_oriented, tessellate, BadEdge, EdgeFault, Face, PatchGeometry, StreamTessellator,
+    Tessellation,
+};
 use capdiv_mesh::{
     samples, BoundaryInterpolation, CreaseMethod, EdgeCrease, EvalError, Evaluator, MeshInput,
     PlanOptions, SurfacePlan, Topology, TriangleSubdivision, VertexCorner,
 };
 use libfuzzer_sys::fuzz_target;
+use std::collections::HashMap;
 
 fn points<R: FuzzReal>(g: &PatchGeometry<R>) -> Vec<Point3<R>> {
     match g {
@@ -119,7 +127,74 @@ fn evaluate<R: FuzzReal>(
             .iter()
             .all(|&c| (c as usize) < t.positions.len()));
     }
+    let mut stream = StreamTessellator::new(grid, R::from_f64(1e-9 * size));
+    let mut streamed = Tessellation::default();
+    for p in &sink.patches {
+        stream.push(p, p.level, &mut streamed);
+    }
+    let summary = stream.finish(&mut streamed);
+    for f in &streamed.faces {
+        assert!(f
+            .corners()
+            .iter()
+            .all(|&c| (c as usize) < streamed.positions.len()));
+    }
+    assert_eq!(
+        summary.closed,
+        in_order_verdict(&streamed.faces),
+        "streamed closedness verdict"
+    );
     Some(is_closed_and_oriented(&t.faces).is_ok())
+}
+
+/// The closedness verdict of checking every edge of `faces` in order, as
+/// the streaming weld's module doc describes it: an edge's second use pairs
+/// it (an error where it runs the same way as the first), a third opens it
+/// again, the fault at the earliest edge use wins, an edge left open is
+/// unpaired.
+fn in_order_verdict(faces: &[Face]) -> core::result::Result<(), BadEdge> {
+    let mut open: HashMap<(u32, u32), (u32, u32, u64, usize)> = HashMap::new();
+    let mut first: Option<(u64, BadEdge)> = None;
+    let blame = |first: &mut Option<(u64, BadEdge)>, at: u64, bad: BadEdge| {
+        if first.is_none_or(|(t, _)| at < t) {
+            *first = Some((at, bad));
+        }
+    };
+    let mut seq = 0u64;
+    for (index, f) in faces.iter().enumerate() {
+        let c = f.corners();
+        for i in 0..c.len() {
+            let (a, b) = (c[i], c[(i + 1) % c.len()]);
+            let key = (a.min(b), a.max(b));
+            match open.remove(&key) {
+                None => {
+                    open.insert(key, (a, b, seq, index));
+                }
+                Some((from, _, at, face)) if from == a => {
+                    let fault = EdgeFault::SameDirection;
+                    let bad = BadEdge {
+                        from: a,
+                        to: b,
+                        face,
+                        fault,
+                    };
+                    blame(&mut first, at, bad);
+                }
+                Some(_) => {}
+            }
+            seq += 1;
+        }
+    }
+    for (from, to, at, face) in open.into_values() {
+        let bad = BadEdge {
+            from,
+            to,
+            face,
+            fault: EdgeFault::Unpaired,
+        };
+        blame(&mut first, at, bad);
+    }
+    first.map_or(Ok(()), |(_, bad)| Err(bad))
 }
 
 /// Generic positions (a hash of the index in [-1, 1]³): no two patches of a
