@@ -48,6 +48,12 @@
 //! around irregular points), what follows the first such hole among those
 //! patches.
 //!
+//! The closedness check follows every edge of the output in order, except
+//! the edges at a sample inside a patch's lattice whose vertex the patch
+//! made, when no two of the patch's samples welded together: the patch's
+//! own faces (an oriented disk) use each of those once each way, and no
+//! other face can reach the vertex, so the verdict is the same.
+//!
 //! Limits: on a non-manifold surface (an edge of three patches, a corner of
 //! more than four outside a hole) a vertex can leave the table before its
 //! last sample, which then makes a second vertex; the closedness check sees
@@ -178,7 +184,8 @@ fn cell_name(key: [i64; 3]) -> u64 {
 }
 
 /// `|x / cell|` below which the fraction of `x / cell` is meaningful to
-/// well within `1 / CELL` (its rounding error is below `2⁻⁴⁴`).
+/// well within `1 / CELL`: the quotient's rounding error is then at most
+/// `2⁻¹³` of a cell.
 const FRACTION_MEANINGFUL: f64 = (1u64 << 40) as f64;
 
 /// A point's weld cell and the range of cells a search covers, per axis.
