@@ -67,6 +67,7 @@ use alloc::collections::VecDeque;
 use alloc::vec::Vec;
 use capdiv::{Point3, Real};
 use core::fmt::{Display, LowerExp, Write};
+use hashbrown::hash_map::Entry;
 use hashbrown::HashMap;
 
 /// Receives a streamed tessellation.
@@ -606,7 +607,14 @@ impl<R: Real> StreamTessellator<R> {
     /// A new slot for a new vertex in cell `cell` (its number set by the
     /// caller).
     fn insert(&mut self, cell: u64, position: Point3<R>) -> u32 {
-        let head = self.cells.get(&cell).copied().unwrap_or(NONE);
+        let s = self.free.last().copied().unwrap_or(self.slots.len() as u32);
+        let head = match self.cells.entry(cell) {
+            Entry::Occupied(mut first) => core::mem::replace(first.get_mut(), s),
+            Entry::Vacant(none) => {
+                none.insert(s);
+                NONE
+            }
+        };
         let slot = Slot {
             next: head,
             cell,
@@ -621,17 +629,10 @@ impl<R: Real> StreamTessellator<R> {
             seq: 0,
             patch: 0,
         };
-        let s = match self.free.pop() {
-            Some(s) => {
-                self.slots[s as usize] = slot;
-                s
-            }
-            None => {
-                self.slots.push(slot);
-                (self.slots.len() - 1) as u32
-            }
-        };
-        self.cells.insert(cell, s);
+        match self.free.pop() {
+            Some(s) => self.slots[s as usize] = slot,
+            None => self.slots.push(slot),
+        }
         self.live += 1;
         self.summary.peak_weld = self.summary.peak_weld.max(self.live);
         s
@@ -640,24 +641,28 @@ impl<R: Real> StreamTessellator<R> {
     /// Takes a slot out of the table; its vertex's normal becomes final.
     fn evict(&mut self, s: u32) {
         self.finalize(s);
-        self.areas.remove(&s);
+        if !self.areas.is_empty() {
+            self.areas.remove(&s);
+        }
         let key = self.slots[s as usize].cell;
         let next = self.slots[s as usize].next;
-        let head = self.cells.get(&key).copied().unwrap_or(NONE);
-        if head == s {
-            if next == NONE {
-                self.cells.remove(&key);
-            } else {
-                self.cells.insert(key, next);
-            }
-        } else {
-            let mut t = head;
-            while t != NONE {
-                if self.slots[t as usize].next == s {
-                    self.slots[t as usize].next = next;
-                    break;
+        if let Entry::Occupied(mut first) = self.cells.entry(key) {
+            let head = *first.get();
+            if head == s {
+                if next == NONE {
+                    first.remove();
+                } else {
+                    *first.get_mut() = next;
                 }
-                t = self.slots[t as usize].next;
+            } else {
+                let mut t = head;
+                while t != NONE {
+                    if self.slots[t as usize].next == s {
+                        self.slots[t as usize].next = next;
+                        break;
+                    }
+                    t = self.slots[t as usize].next;
+                }
             }
         }
         let slot = &mut self.slots[s as usize];
@@ -755,22 +760,20 @@ impl<R: Real> StreamTessellator<R> {
                 ));
             }
         };
-        match self.edges.remove(&key) {
-            None => {
-                self.edges.insert(
-                    key,
-                    OpenEdge {
-                        from: a,
-                        to: b,
-                        seq,
-                        face,
-                    },
-                );
+        let first = match self.edges.entry(key) {
+            Entry::Occupied(first) => first.remove(),
+            Entry::Vacant(none) => {
+                none.insert(OpenEdge {
+                    from: a,
+                    to: b,
+                    seq,
+                    face,
+                });
+                return;
             }
-            Some(first) if first.from == a => {
-                blame(first.seq, a, b, first.face, EdgeFault::SameDirection);
-            }
-            Some(_) => {}
+        };
+        if first.from == a {
+            blame(first.seq, a, b, first.face, EdgeFault::SameDirection);
         }
     }
 
