@@ -379,9 +379,15 @@ fn capdiv_stream_evaluate(ev: &mut Evaluator<f64>, mesh: &MeshInput) -> usize {
 
 /// One evaluation streamed through the CLI's welded tessellation (grid
 /// [`TESS_GRID`], welded within `tol`, faces tagged by level), into a sink
-/// that counts (`text` false) or the OBJ text (`text` true).
+/// that counts (`text` false: vertices and faces) or the OBJ text (`text`
+/// true: its length, 0).
 #[inline(always)]
-fn stream_tessellate(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64, text: bool) -> usize {
+fn stream_tessellate(
+    ev: &mut Evaluator<f64>,
+    mesh: &MeshInput,
+    tol: f64,
+    text: bool,
+) -> (usize, usize) {
     let mut tess = StreamTessellator::new(TESS_GRID, tol);
     let tag: fn(&PatchRecord<f64>) -> u32 = |p| p.level;
     if text {
@@ -393,7 +399,7 @@ fn stream_tessellate(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64, text: 
         };
         ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
         tess.finish(&mut out);
-        out.out.len()
+        (out.out.len(), 0)
     } else {
         let mut out = CountMesh::default();
         let mut sink = TessellatingSink {
@@ -403,14 +409,15 @@ fn stream_tessellate(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64, text: 
         };
         ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
         tess.finish(&mut out);
-        out.0 + out.1
+        (out.0, out.1)
     }
 }
 
-/// [`stream_tessellate`] into a counting sink, for callgrind.
+/// [`stream_tessellate`] into a counting sink, for callgrind: vertices and
+/// faces.
 #[no_mangle]
 #[inline(never)]
-fn capdiv_stream_count(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> usize {
+fn capdiv_stream_count(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> (usize, usize) {
     stream_tessellate(ev, mesh, tol, false)
 }
 
@@ -418,7 +425,7 @@ fn capdiv_stream_count(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> u
 #[no_mangle]
 #[inline(never)]
 fn capdiv_stream_obj(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> usize {
-    stream_tessellate(ev, mesh, tol, true)
+    stream_tessellate(ev, mesh, tol, true).0
 }
 
 /// Median seconds of three calls of `f` (the tessellation takes seconds on
@@ -445,25 +452,12 @@ fn measure_tessellation(mesh: &MeshInput) -> (f64, f64, f64, usize, usize) {
     let tol = WELD * size(mesh);
     let mut patches = 0;
     let evaluate = median_of_3(|| patches = capdiv_stream_evaluate(&mut ev, mesh));
-    let mut handed = 0;
-    let count = median_of_3(|| handed = capdiv_stream_count(&mut ev, mesh, tol));
+    let mut vertices = 0;
+    let count = median_of_3(|| vertices = capdiv_stream_count(&mut ev, mesh, tol).0);
     let obj = median_of_3(|| {
         black_box(capdiv_stream_obj(&mut ev, mesh, tol));
     });
-    let faces = {
-        let mut tess = StreamTessellator::new(TESS_GRID, tol);
-        let mut out = CountMesh::default();
-        let tag: fn(&PatchRecord<f64>) -> u32 = |p| p.level;
-        let mut sink = TessellatingSink {
-            tess: &mut tess,
-            out: &mut out,
-            tag,
-        };
-        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
-        tess.finish(&mut out);
-        out.1
-    };
-    (evaluate, count, obj, patches, handed - faces)
+    (evaluate, count, obj, patches, vertices)
 }
 
 /// The largest side of the bounding box.
@@ -734,7 +728,9 @@ fn main() {
         let tol = WELD * size(&case.mesh);
         println!("faces {}", case.mesh.faces.len());
         println!("patches {}", capdiv_stream_evaluate(&mut ev, &case.mesh));
-        println!("handed {}", capdiv_stream_count(&mut ev, &case.mesh, tol));
+        let (vertices, faces) = capdiv_stream_count(&mut ev, &case.mesh, tol);
+        println!("output vertices {vertices}");
+        println!("output faces {faces}");
         println!("bytes {}", capdiv_stream_obj(&mut ev, &case.mesh, tol));
         return;
     }
