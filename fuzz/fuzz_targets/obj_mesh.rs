@@ -35,7 +35,7 @@ use capdiv_fuzz::FuzzReal;
 use capdiv_mesh::obj::parse_obj;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, tessellate, BadEdge, EdgeFault, Face, PatchGeometry, StreamTessellator,
+    closed_in_order, is_closed_and_oriented, tessellate, PatchGeometry, StreamTessellator,
     Tessellation,
 };
 use capdiv_mesh::{
@@ -43,7 +43,6 @@ use capdiv_mesh::{
     PlanOptions, SurfacePlan, Topology, TriangleSubdivision, VertexCorner,
 };
 use libfuzzer_sys::fuzz_target;
-use std::collections::HashMap;
 
 fn points<R: FuzzReal>(g: &PatchGeometry<R>) -> Vec<Point3<R>> {
     match g {
@@ -141,60 +140,10 @@ fn evaluate<R: FuzzReal>(
     }
     assert_eq!(
         summary.closed,
-        in_order_verdict(&streamed.faces),
+        closed_in_order(&streamed.faces),
         "streamed closedness verdict"
     );
     Some(is_closed_and_oriented(&t.faces).is_ok())
-}
-
-/// The closedness verdict of checking every edge of `faces` in order, as
-/// the streaming weld's module doc describes it: an edge's second use pairs
-/// it (an error where it runs the same way as the first), a third opens it
-/// again, the fault at the earliest edge use wins, an edge left open is
-/// unpaired.
-fn in_order_verdict(faces: &[Face]) -> core::result::Result<(), BadEdge> {
-    let mut open: HashMap<(u32, u32), (u32, u32, u64, usize)> = HashMap::new();
-    let mut first: Option<(u64, BadEdge)> = None;
-    let blame = |first: &mut Option<(u64, BadEdge)>, at: u64, bad: BadEdge| {
-        if first.is_none_or(|(t, _)| at < t) {
-            *first = Some((at, bad));
-        }
-    };
-    let mut seq = 0u64;
-    for (index, f) in faces.iter().enumerate() {
-        let c = f.corners();
-        for i in 0..c.len() {
-            let (a, b) = (c[i], c[(i + 1) % c.len()]);
-            let key = (a.min(b), a.max(b));
-            match open.remove(&key) {
-                None => {
-                    open.insert(key, (a, b, seq, index));
-                }
-                Some((from, _, at, face)) if from == a => {
-                    let fault = EdgeFault::SameDirection;
-                    let bad = BadEdge {
-                        from: a,
-                        to: b,
-                        face,
-                        fault,
-                    };
-                    blame(&mut first, at, bad);
-                }
-                Some(_) => {}
-            }
-            seq += 1;
-        }
-    }
-    for (from, to, at, face) in open.into_values() {
-        let bad = BadEdge {
-            from,
-            to,
-            face,
-            fault: EdgeFault::Unpaired,
-        };
-        blame(&mut first, at, bad);
-    }
-    first.map_or(Ok(()), |(_, bad)| Err(bad))
 }
 
 /// Generic positions (a hash of the index in [-1, 1]³): no two patches of a

@@ -7,8 +7,8 @@
 
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, TensorPatch};
 use capdiv_mesh::tessellate::{
-    edge_bit, is_closed_and_oriented, tessellate, weld, write_obj, BadEdge, EdgeFault, Face,
-    PatchGeometry, Tessellation, EDGE_U0, EDGE_U1, EDGE_V0, EDGE_V1,
+    closed_in_order, edge_bit, is_closed_and_oriented, tessellate, weld, write_obj, BadEdge,
+    EdgeFault, Face, PatchGeometry, Tessellation, EDGE_U0, EDGE_U1, EDGE_V0, EDGE_V1,
 };
 use capdiv_mesh::{PatchKind, PatchRecord};
 use std::collections::BTreeSet;
@@ -682,6 +682,51 @@ fn closedness_check_reports_the_first_bad_edge() {
             .unwrap_err()
             .fault,
         EdgeFault::Degenerate
+    );
+}
+
+#[test]
+fn in_order_check_pairs_edges_as_they_come() {
+    // A tetrahedron, counter-clockwise seen from outside.
+    let tet = [
+        Face::Tri([0, 2, 1]),
+        Face::Tri([0, 1, 3]),
+        Face::Tri([1, 2, 3]),
+        Face::Tri([2, 0, 3]),
+    ];
+    assert_eq!(closed_in_order(&tet), Ok(()));
+    let mut flipped = tet;
+    flipped[2] = Face::Tri([1, 3, 2]);
+    // Edge uses in order: 0→2, 2→1, 1→0 (face 0); 0→1, 1→3, 3→0 (face 1);
+    // 1→3, 3→2, 2→1 (face 2); 2→0, 0→3, 3→2 (face 3). Faults: 1→3 against
+    // use 4, 2→1 against use 1, 3→2 against use 7; the earliest is use 1.
+    assert_eq!(
+        closed_in_order(&flipped),
+        Err(BadEdge {
+            from: 2,
+            to: 1,
+            face: 0,
+            fault: EdgeFault::SameDirection
+        })
+    );
+    // Face 0 missing: 0→1, 1→2 and 2→0 stay open; 0→1 (use 0, face 0 of
+    // the rest) is the first.
+    assert_eq!(
+        closed_in_order(&tet[1..]),
+        Err(BadEdge {
+            from: 0,
+            to: 1,
+            face: 0,
+            fault: EdgeFault::Unpaired
+        })
+    );
+    // Twice the tetrahedron: every edge used four times, twice each way,
+    // pairs up in order, where the sorting check sees the overuse.
+    let twice: Vec<Face> = tet.iter().chain(tet.iter()).copied().collect();
+    assert_eq!(closed_in_order(&twice), Ok(()));
+    assert_eq!(
+        is_closed_and_oriented(&twice).unwrap_err().fault,
+        EdgeFault::Overused
     );
 }
 

@@ -11,12 +11,11 @@ use capdiv::{Point3, TensorPatch};
 use capdiv_mesh::samples;
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, tessellate, write_obj, BadEdge, EdgeFault, Face, MeshSink, ObjWriter,
+    closed_in_order, is_closed_and_oriented, tessellate, write_obj, MeshSink, ObjWriter,
     PatchGeometry, StreamSummary, StreamTessellator, TessellatingSink, Tessellation,
 };
 use capdiv_mesh::{CapRecord, Evaluator, MeshInput, PatchKind, PatchRecord, SurfaceSink, Unit};
 use common::plan;
-use std::collections::HashMap;
 
 /// Every patch and cap, in the evaluator's order.
 type Collect = CollectSurface<f64>;
@@ -401,58 +400,6 @@ fn faces_follow_their_vertices() {
     assert_eq!(c.max_index as usize + 1, c.vertices);
 }
 
-/// The closedness verdict of checking every edge of `faces` in order, as the
-/// stream's module doc describes it: an edge's second use pairs it (an error
-/// where it runs the same way as the first), a third use opens it again, the
-/// first fault by the position of the edge use it names wins, and an edge
-/// left open is unpaired.
-fn in_order_verdict(faces: &[Face]) -> Result<(), BadEdge> {
-    let mut open: HashMap<(u32, u32), (u32, u32, u64, usize)> = HashMap::new();
-    let mut first: Option<(u64, BadEdge)> = None;
-    let mut seq = 0u64;
-    let blame = |first: &mut Option<(u64, BadEdge)>, at: u64, bad: BadEdge| {
-        if first.is_none_or(|(t, _)| at < t) {
-            *first = Some((at, bad));
-        }
-    };
-    for (index, f) in faces.iter().enumerate() {
-        let c = f.corners();
-        for i in 0..c.len() {
-            let (a, b) = (c[i], c[(i + 1) % c.len()]);
-            match open.remove(&(a.min(b), a.max(b))) {
-                None => {
-                    open.insert((a.min(b), a.max(b)), (a, b, seq, index));
-                }
-                Some((from, _, at, face)) if from == a => blame(
-                    &mut first,
-                    at,
-                    BadEdge {
-                        from: a,
-                        to: b,
-                        face,
-                        fault: EdgeFault::SameDirection,
-                    },
-                ),
-                Some(_) => {}
-            }
-            seq += 1;
-        }
-    }
-    for (from, to, at, face) in open.into_values() {
-        let bad = BadEdge {
-            from,
-            to,
-            face,
-            fault: EdgeFault::Unpaired,
-        };
-        blame(&mut first, at, bad);
-    }
-    match first {
-        None => Ok(()),
-        Some((_, bad)) => Err(bad),
-    }
-}
-
 /// A bicubic patch record of the plane `z = 0` over `x ∈ [x0, x0 + 1]`,
 /// `y ∈ [0, 1]`, with the control points' `x` given per row `i` (along `u`).
 fn planar(x: [f64; 4]) -> PatchRecord<f64> {
@@ -524,7 +471,7 @@ fn closedness_verdict_is_that_of_checking_every_edge_in_order() {
     for (name, ps, tol) in &cases {
         for grid in [1, 2, 4] {
             let (got, s) = streamed(ps, grid, *tol);
-            let expected = in_order_verdict(&got.faces);
+            let expected = closed_in_order(&got.faces);
             assert_eq!(s.closed, expected, "{name}, grid {grid}");
             faults += usize::from(expected.is_err());
         }

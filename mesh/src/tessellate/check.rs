@@ -2,6 +2,7 @@
 
 use super::Face;
 use alloc::vec::Vec;
+use hashbrown::HashMap;
 
 /// What is wrong with an edge.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,6 +28,64 @@ pub struct BadEdge {
     pub face: usize,
     /// The fault.
     pub fault: EdgeFault,
+}
+
+/// The verdict of following the edges of `faces` one by one, as the
+/// streaming weld reports it on its own output
+/// ([`super::StreamSummary::closed`]): an edge's second use pairs it (a
+/// [`EdgeFault::SameDirection`] fault where it runs the same way as the
+/// first), a third use opens it again, and an edge left open is
+/// [`EdgeFault::Unpaired`]; of the faults, the one whose edge use came
+/// first in face order is returned. Unlike [`is_closed_and_oriented`] it
+/// does not see an edge used four times, twice each way. A hash map of the
+/// open edges, `O(E)`.
+pub fn closed_in_order(faces: &[Face]) -> Result<(), BadEdge> {
+    let mut open: HashMap<(u32, u32), (u32, u32, u64, usize)> = HashMap::new();
+    let mut first: Option<(u64, BadEdge)> = None;
+    let blame = |first: &mut Option<(u64, BadEdge)>, at: u64, bad: BadEdge| {
+        if first.is_none_or(|(t, _)| at < t) {
+            *first = Some((at, bad));
+        }
+    };
+    let mut seq = 0u64;
+    for (index, f) in faces.iter().enumerate() {
+        let c = f.corners();
+        for i in 0..c.len() {
+            let (a, b) = (c[i], c[(i + 1) % c.len()]);
+            let key = (a.min(b), a.max(b));
+            match open.remove(&key) {
+                None => {
+                    open.insert(key, (a, b, seq, index));
+                }
+                Some((from, _, at, face)) if from == a => {
+                    let fault = EdgeFault::SameDirection;
+                    let bad = BadEdge {
+                        from: a,
+                        to: b,
+                        face,
+                        fault,
+                    };
+                    blame(&mut first, at, bad);
+                }
+                Some(_) => {}
+            }
+            seq += 1;
+        }
+    }
+    for (from, to, at, face) in open.into_values() {
+        let fault = EdgeFault::Unpaired;
+        blame(
+            &mut first,
+            at,
+            BadEdge {
+                from,
+                to,
+                face,
+                fault,
+            },
+        );
+    }
+    first.map_or(Ok(()), |(_, bad)| Err(bad))
 }
 
 /// Checks that every undirected edge of `faces` is used by exactly two
