@@ -378,39 +378,22 @@ fn capdiv_stream_evaluate(ev: &mut Evaluator<f64>, mesh: &MeshInput) -> usize {
 }
 
 /// One evaluation streamed through the CLI's welded tessellation (grid
-/// [`TESS_GRID`], welded within `tol`, faces tagged by level), into a sink
-/// that counts (`text` false: vertices and faces) or the OBJ text (`text`
-/// true: its length, 0).
+/// [`TESS_GRID`], welded within `tol`, faces tagged by level) into `out`.
 #[inline(always)]
-fn stream_tessellate(
+fn stream_tessellate<S: MeshSink<f64>>(
     ev: &mut Evaluator<f64>,
     mesh: &MeshInput,
     tol: f64,
-    text: bool,
-) -> (usize, usize) {
+    out: &mut S,
+) {
     let mut tess = StreamTessellator::new(TESS_GRID, tol);
-    let tag: fn(&PatchRecord<f64>) -> u32 = |p| p.level;
-    if text {
-        let mut out = ObjWriter::new(String::new(), &[]);
-        let mut sink = TessellatingSink {
-            tess: &mut tess,
-            out: &mut out,
-            tag,
-        };
-        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
-        tess.finish(&mut out);
-        (out.out.len(), 0)
-    } else {
-        let mut out = CountMesh::default();
-        let mut sink = TessellatingSink {
-            tess: &mut tess,
-            out: &mut out,
-            tag,
-        };
-        ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
-        tess.finish(&mut out);
-        (out.0, out.1)
-    }
+    let mut sink = TessellatingSink {
+        tess: &mut tess,
+        out,
+        tag: |p| p.level,
+    };
+    ev.evaluate(&mesh.vertices, &mut sink).expect("evaluate");
+    tess.finish(out);
 }
 
 /// [`stream_tessellate`] into a counting sink, for callgrind: vertices and
@@ -418,14 +401,18 @@ fn stream_tessellate(
 #[no_mangle]
 #[inline(never)]
 fn capdiv_stream_count(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> (usize, usize) {
-    stream_tessellate(ev, mesh, tol, false)
+    let mut out = CountMesh::default();
+    stream_tessellate(ev, mesh, tol, &mut out);
+    (out.0, out.1)
 }
 
-/// [`stream_tessellate`] into OBJ text, for callgrind.
+/// [`stream_tessellate`] into OBJ text, for callgrind: its length.
 #[no_mangle]
 #[inline(never)]
 fn capdiv_stream_obj(ev: &mut Evaluator<f64>, mesh: &MeshInput, tol: f64) -> usize {
-    stream_tessellate(ev, mesh, tol, true).0
+    let mut out = ObjWriter::new(String::new(), &[]);
+    stream_tessellate(ev, mesh, tol, &mut out);
+    out.out.len()
 }
 
 /// Median seconds of three calls of `f` (the tessellation takes seconds on
