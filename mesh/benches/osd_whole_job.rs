@@ -42,7 +42,11 @@
 //! `-- --stream NAME` one evaluation each inside `capdiv_stream_evaluate`
 //! (patches to a sink that counts them), `capdiv_stream_count` (streamed
 //! through the welded tessellation into a sink that counts) and
-//! `capdiv_stream_obj` (into OBJ text).
+//! `capdiv_stream_obj` (into OBJ text). `-- --analyse NAME [ROUNDS]` times
+//! capdiv's analysis alone, ROUNDS times (21 by default), and prints the
+//! fastest and the median per face: a quick comparison of two builds, run
+//! alternately (the analysis' time moves with the allocator's page faults:
+//! see `docs/benchmarks.md`).
 
 #[path = "osd/common.rs"]
 mod common;
@@ -719,6 +723,26 @@ fn main() {
         println!("output vertices {vertices}");
         println!("output faces {faces}");
         println!("bytes {}", capdiv_stream_obj(&mut ev, &case.mesh, tol));
+        return;
+    }
+    if let Some(name) = value("--analyse") {
+        let case = cases(&|n| n == name).pop().expect("unknown mesh");
+        let rounds: usize = value(&name).and_then(|r| r.parse().ok()).unwrap_or(21);
+        let mut ns: Vec<f64> = (0..rounds)
+            .map(|_| {
+                let t = Instant::now();
+                let plan = capdiv_job_analyse(&case.mesh);
+                let d = t.elapsed().as_nanos() as f64;
+                drop(black_box(plan));
+                d / case.mesh.faces.len() as f64
+            })
+            .collect();
+        ns.sort_by(f64::total_cmp);
+        println!(
+            "analysis ns/face: min {:.1} median {:.1}",
+            ns[0],
+            ns[rounds / 2]
+        );
         return;
     }
     if let Some(name) = value("--prepare") {
