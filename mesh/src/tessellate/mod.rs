@@ -168,6 +168,7 @@ pub enum Face {
 
 impl Face {
     /// The corners in order (3 or 4).
+    #[inline]
     pub fn corners(&self) -> &[u32] {
         match self {
             Face::Tri(c) => c,
@@ -175,6 +176,7 @@ impl Face {
         }
     }
 
+    #[inline]
     fn map(self, f: impl Fn(u32) -> u32) -> Self {
         match self {
             Face::Tri(c) => Face::Tri(c.map(f)),
@@ -183,9 +185,14 @@ impl Face {
     }
 
     /// Two corners equal.
+    #[inline]
     fn is_degenerate(&self) -> bool {
-        let c = self.corners();
-        (0..c.len()).any(|i| c[i + 1..].contains(&c[i]))
+        match *self {
+            Face::Tri([a, b, c]) => (a == b) | (b == c) | (a == c),
+            Face::Quad([a, b, c, d]) => {
+                (a == b) | (a == c) | (a == d) | (b == c) | (b == d) | (c == d)
+            }
+        }
     }
 }
 

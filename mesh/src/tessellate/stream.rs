@@ -320,7 +320,7 @@ impl<R: Real> StreamTessellator<R> {
         self.injective = true;
         let first_vertex = self.summary.vertices;
         for k in 0..count {
-            let s = self.weld(k);
+            let s = self.weld(k, sink);
             self.local.push(s);
         }
         // An interior sample whose vertex this patch made, in a patch whose
@@ -337,7 +337,7 @@ impl<R: Real> StreamTessellator<R> {
         }
         for f in 0..self.raw.faces.len() {
             let (face, tag) = (self.raw.faces[f], self.raw.tags[f]);
-            self.face(face, tag);
+            self.face(face, tag, sink);
         }
         for k in 0..count {
             let s = self.local[k];
@@ -489,7 +489,7 @@ impl<R: Real> StreamTessellator<R> {
     }
 
     /// Welds sample `k` of the current patch; returns its slot.
-    fn weld(&mut self, k: usize) -> u32 {
+    fn weld(&mut self, k: usize, sink: &mut dyn MeshSink<R>) -> u32 {
         let position = self.raw.positions[k];
         let x = weld_coordinates(position);
         let near = self.near(&x);
@@ -526,7 +526,8 @@ impl<R: Real> StreamTessellator<R> {
             slot.seq = seq;
             let known = (slot.sampled && slot.normal != Point3::ZERO).then_some(slot.normal);
             slot.done = known.is_some();
-            self.queue.push_back(Waiting::Vertex(slot.position, known));
+            let position = slot.position;
+            self.hand_over(Waiting::Vertex(position, known), sink);
         } else {
             let slot = &self.slots[s as usize];
             if !slot.done && slot.sampled && slot.normal != Point3::ZERO {
@@ -699,7 +700,7 @@ impl<R: Real> StreamTessellator<R> {
     }
 
     /// One face of the current patch, in sample indices.
-    fn face(&mut self, f: Face, tag: u32) {
+    fn face(&mut self, f: Face, tag: u32, sink: &mut dyn MeshSink<R>) {
         let slots: Face = f.map(|k| self.local[k as usize]);
         let face = slots.map(|s| self.slots[s as usize].vertex);
         if face.is_degenerate() {
@@ -731,7 +732,7 @@ impl<R: Real> StreamTessellator<R> {
         let v = face.corners();
         let k = f.corners();
         for i in 0..v.len() {
-            let j = (i + 1) % v.len();
+            let j = if i + 1 == v.len() { 0 } else { i + 1 };
             if self.paired_here[k[i] as usize] || self.paired_here[k[j] as usize] {
                 // Paired inside this patch (see `push`); numbered all the same.
                 self.edge_seq += 1;
@@ -739,7 +740,7 @@ impl<R: Real> StreamTessellator<R> {
                 self.edge(v[i], v[j], index);
             }
         }
-        self.queue.push_back(Waiting::Face(face, tag));
+        self.hand_over(Waiting::Face(face, tag), sink);
     }
 
     /// One directed edge of face `face`, for the closedness check.
@@ -775,6 +776,29 @@ impl<R: Real> StreamTessellator<R> {
         if first.from == a {
             blame(first.seq, a, b, first.face, EdgeFault::SameDirection);
         }
+    }
+
+    /// Hands `w` to the sink at once when nothing waits before it and it
+    /// waits for nothing itself, else queues it (the order is the queue's
+    /// either way; `queue_front` counts what went past the queue too, so a
+    /// vertex's `seq` stays its place in the output).
+    #[inline]
+    fn hand_over(&mut self, w: Waiting<R>, sink: &mut dyn MeshSink<R>) {
+        if self.queue.is_empty() {
+            match w {
+                Waiting::Vertex(p, Some(n)) => {
+                    self.queue_front += 1;
+                    return sink.vertex(p, n);
+                }
+                Waiting::Face(f, tag) => {
+                    self.queue_front += 1;
+                    return sink.face(f, tag);
+                }
+                Waiting::Vertex(_, None) => {}
+            }
+        }
+        self.queue.push_back(w);
+        self.summary.peak_waiting = self.summary.peak_waiting.max(self.queue.len());
     }
 
     /// Hands over the waiting output up to the first vertex without a normal.
