@@ -196,6 +196,28 @@ struct Near {
     hi: [i64; 3],
 }
 
+/// Among the slots chained from `s` within `tol` of `x` (per coordinate)
+/// and `best`, the one of the lowest-numbered vertex, into `best`.
+#[inline]
+fn closest_in_chain<R: Real>(
+    slots: &[Slot<R>],
+    mut s: u32,
+    x: &[f64; 3],
+    tol: f64,
+    best: &mut Option<u32>,
+) {
+    while s != NONE {
+        let slot = &slots[s as usize];
+        let y = weld_coordinates(slot.position);
+        if (0..3).all(|d| libm::fabs(x[d] - y[d]) <= tol)
+            && best.is_none_or(|b| slot.vertex < slots[b as usize].vertex)
+        {
+            *best = Some(s);
+        }
+        s = slot.next;
+    }
+}
+
 /// An edge used by one face so far.
 struct OpenEdge {
     from: u32,
@@ -493,9 +515,13 @@ impl<R: Real> StreamTessellator<R> {
         let position = self.raw.positions[k];
         let x = weld_coordinates(position);
         let near = self.near(&x);
-        let s = match self.find(&x, &near) {
-            Some(s) => s,
-            None => self.insert(cell_name(near.key), position),
+        let s = if near.lo == near.hi {
+            self.find_or_insert_in_cell(&x, cell_name(near.key), position)
+        } else {
+            match self.find(&x, &near) {
+                Some(s) => s,
+                None => self.insert(cell_name(near.key), position),
+            }
         };
         let new = self.slots[s as usize].vertex == NONE;
         if self.slots[s as usize].patch == self.patches {
@@ -543,23 +569,31 @@ impl<R: Real> StreamTessellator<R> {
         let tol = self.tol;
         let mut best: Option<u32> = None;
         let (lo, hi) = (near.lo, near.hi);
-        for i in lo[0]..=hi[0] {
-            for j in lo[1]..=hi[1] {
-                for l in lo[2]..=hi[2] {
+        // `lo[d] ..= hi[d]` (never empty: `lo ≤ key ≤ hi`), counted by hand:
+        // a `RangeInclusive` checks its own exhaustion on every step.
+        let mut i = lo[0];
+        loop {
+            let mut j = lo[1];
+            loop {
+                let mut l = lo[2];
+                loop {
                     let name = cell_name([i, j, l]);
-                    let mut s = self.cells.get(&name).copied().unwrap_or(NONE);
-                    while s != NONE {
-                        let slot = &self.slots[s as usize];
-                        let y = weld_coordinates(slot.position);
-                        if (0..3).all(|d| libm::fabs(x[d] - y[d]) <= tol)
-                            && best.is_none_or(|b| slot.vertex < self.slots[b as usize].vertex)
-                        {
-                            best = Some(s);
-                        }
-                        s = slot.next;
+                    let head = self.cells.get(&name).copied().unwrap_or(NONE);
+                    closest_in_chain(&self.slots, head, x, tol, &mut best);
+                    if l >= hi[2] {
+                        break;
                     }
+                    l += 1;
                 }
+                if j >= hi[1] {
+                    break;
+                }
+                j += 1;
             }
+            if i >= hi[0] {
+                break;
+            }
+            i += 1;
         }
         best
     }
@@ -605,6 +639,29 @@ impl<R: Real> StreamTessellator<R> {
         near
     }
 
+    /// [`Self::find`] in the one cell `cell` and, when nothing there is
+    /// within the tolerance of `x`, [`Self::insert`] into it: one look-up in
+    /// the cell table for both.
+    fn find_or_insert_in_cell(&mut self, x: &[f64; 3], cell: u64, position: Point3<R>) -> u32 {
+        let tol = self.tol;
+        let s = self.free.last().copied().unwrap_or(self.slots.len() as u32);
+        let head = match self.cells.entry(cell) {
+            Entry::Occupied(mut first) => {
+                let mut best: Option<u32> = None;
+                closest_in_chain(&self.slots, *first.get(), x, tol, &mut best);
+                if let Some(b) = best {
+                    return b;
+                }
+                core::mem::replace(first.get_mut(), s)
+            }
+            Entry::Vacant(none) => {
+                none.insert(s);
+                NONE
+            }
+        };
+        self.fill_slot(cell, head, position)
+    }
+
     /// A new slot for a new vertex in cell `cell` (its number set by the
     /// caller).
     fn insert(&mut self, cell: u64, position: Point3<R>) -> u32 {
@@ -616,6 +673,12 @@ impl<R: Real> StreamTessellator<R> {
                 NONE
             }
         };
+        self.fill_slot(cell, head, position)
+    }
+
+    /// Fills the next free slot (the one [`Self::insert`] chained in front
+    /// of `head` in cell `cell`) and returns it.
+    fn fill_slot(&mut self, cell: u64, head: u32, position: Point3<R>) -> u32 {
         let slot = Slot {
             next: head,
             cell,
@@ -630,10 +693,16 @@ impl<R: Real> StreamTessellator<R> {
             seq: 0,
             patch: 0,
         };
-        match self.free.pop() {
-            Some(s) => self.slots[s as usize] = slot,
-            None => self.slots.push(slot),
-        }
+        let s = match self.free.pop() {
+            Some(s) => {
+                self.slots[s as usize] = slot;
+                s
+            }
+            None => {
+                self.slots.push(slot);
+                (self.slots.len() - 1) as u32
+            }
+        };
         self.live += 1;
         self.summary.peak_weld = self.summary.peak_weld.max(self.live);
         s
