@@ -189,11 +189,32 @@ fn cell_name(key: [i64; 3]) -> u64 {
 /// `2⁻¹³` of a cell.
 const FRACTION_MEANINGFUL: f64 = (1u64 << 40) as f64;
 
-/// A point's weld cell and the range of cells a search covers, per axis.
+/// A point's weld cell and the cells a search covers: per axis (bit `d`),
+/// whether the neighbour below and the one above are searched too.
 struct Near {
     key: [i64; 3],
-    lo: [i64; 3],
-    hi: [i64; 3],
+    below: u8,
+    above: u8,
+}
+
+impl Near {
+    /// Only the point's own cell is searched.
+    #[inline]
+    fn single(&self) -> bool {
+        self.below | self.above == 0
+    }
+
+    /// The first cell searched along axis `d`.
+    #[inline]
+    fn lo(&self, d: usize) -> i64 {
+        self.key[d].saturating_sub(i64::from(self.below >> d & 1))
+    }
+
+    /// The last cell searched along axis `d` (`lo(d) ≤ key[d] ≤ hi(d)`).
+    #[inline]
+    fn hi(&self, d: usize) -> i64 {
+        self.key[d].saturating_add(i64::from(self.above >> d & 1))
+    }
 }
 
 /// Among the slots chained from `s` within `tol` of `x` (per coordinate)
@@ -515,7 +536,7 @@ impl<R: Real> StreamTessellator<R> {
         let position = self.raw.positions[k];
         let x = weld_coordinates(position);
         let near = self.near(&x);
-        let s = if near.lo == near.hi {
+        let s = if near.single() {
             self.find_or_insert_in_cell(&x, cell_name(near.key), position)
         } else {
             match self.find(&x, &near) {
@@ -568,7 +589,8 @@ impl<R: Real> StreamTessellator<R> {
     fn find(&self, x: &[f64; 3], near: &Near) -> Option<u32> {
         let tol = self.tol;
         let mut best: Option<u32> = None;
-        let (lo, hi) = (near.lo, near.hi);
+        let lo = [near.lo(0), near.lo(1), near.lo(2)];
+        let hi = [near.hi(0), near.hi(1), near.hi(2)];
         // `lo[d] ..= hi[d]` (never empty: `lo ≤ key ≤ hi`), counted by hand:
         // a `RangeInclusive` checks its own exhaustion on every step.
         let mut i = lo[0];
@@ -609,32 +631,29 @@ impl<R: Real> StreamTessellator<R> {
     /// cell is the exact coordinates.
     fn near(&self, x: &[f64; 3]) -> Near {
         if self.tol == 0.0 {
-            let key = x.map(|c| c.to_bits() as i64);
             return Near {
-                key,
-                lo: key,
-                hi: key,
+                key: x.map(|c| c.to_bits() as i64),
+                below: 0,
+                above: 0,
             };
         }
         let cell = CELL * self.tol;
         let mut near = Near {
             key: [0; 3],
-            lo: [0; 3],
-            hi: [0; 3],
+            below: 0,
+            above: 0,
         };
         for (d, &c) in x.iter().enumerate() {
             let q = c / cell;
             // Saturating; NaN gives 0.
             let k = floor_to_i64(q);
-            let (below, above) = if libm::fabs(q) < FRACTION_MEANINGFUL {
-                let f = q - k as f64;
-                (f < 2.0 / CELL, f > 1.0 - 2.0 / CELL)
-            } else {
-                (true, true)
-            };
+            // Both neighbours where the fraction means nothing (NaN too).
+            #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN is wide too
+            let wide = !(libm::fabs(q) < FRACTION_MEANINGFUL);
+            let f = q - k as f64;
             near.key[d] = k;
-            near.lo[d] = if below { k.saturating_sub(1) } else { k };
-            near.hi[d] = if above { k.saturating_add(1) } else { k };
+            near.below |= u8::from(wide | (f < 2.0 / CELL)) << d;
+            near.above |= u8::from(wide | (f > 1.0 - 2.0 / CELL)) << d;
         }
         near
     }
@@ -799,14 +818,22 @@ impl<R: Real> StreamTessellator<R> {
             Face::Quad(_) => self.summary.quads += 1,
         }
         let v = face.corners();
-        let k = f.corners();
-        for i in 0..v.len() {
-            let j = if i + 1 == v.len() { 0 } else { i + 1 };
-            if self.paired_here[k[i] as usize] || self.paired_here[k[j] as usize] {
-                // Paired inside this patch (see `push`); numbered all the same.
-                self.edge_seq += 1;
-            } else {
-                self.edge(v[i], v[j], index);
+        // Per corner: its edges are paired inside this patch (see `push`).
+        let mut here = [false; 4];
+        for (h, &k) in here.iter_mut().zip(f.corners()) {
+            *h = self.paired_here[k as usize];
+        }
+        if here[..v.len()].iter().all(|&h| h) {
+            self.edge_seq += v.len() as u64;
+        } else {
+            for i in 0..v.len() {
+                let j = if i + 1 == v.len() { 0 } else { i + 1 };
+                if here[i] || here[j] {
+                    // Numbered all the same.
+                    self.edge_seq += 1;
+                } else {
+                    self.edge(v[i], v[j], index);
+                }
             }
         }
         self.hand_over(Waiting::Face(face, tag), sink);
