@@ -731,7 +731,7 @@ impl<'t> SurfacePlan<'t> {
             return Ok(());
         }
         let first = (self.vertices + self.phantoms.len()) as u32;
-        let mut a = adaptive::cover(
+        let a = adaptive::cover(
             &base.level,
             roots,
             AdaptiveOptions {
@@ -745,8 +745,9 @@ impl<'t> SurfacePlan<'t> {
             first,
         );
         self.phantoms
-            .try_append_owned(core::mem::take(&mut a.points.rows))?;
+            .try_reserve(a.points.rows.len(), a.points.rows.entries())?;
         mem::reserve(&mut self.regular, a.patches.len())?;
+        self.phantoms.append(&a.points.rows);
         let edges = &a.edges;
         // Level-0 patches: the analysed face's corners are its grid's inner
         // points.

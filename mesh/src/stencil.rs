@@ -123,21 +123,6 @@ impl StencilTable {
         self.weights.extend_from_slice(&other.weights);
     }
 
-    /// Appends every row of `other`, as [`StencilTable::append`], taking
-    /// `other`'s storage instead of copying it when this table has no rows:
-    /// the big table the adaptive refinement builds moves into the plan
-    /// without a second copy at the analysis' peak. Otherwise reserves
-    /// fallibly first, so the append does not allocate.
-    pub fn try_append_owned(&mut self, other: StencilTable) -> Result<(), crate::mem::OutOfMemory> {
-        if self.is_empty() {
-            *self = other;
-            return Ok(());
-        }
-        self.try_reserve(other.len(), other.entries())?;
-        self.append(&other);
-        Ok(())
-    }
-
     /// Room for `rows` more rows of `entries` entries in all (amortised
     /// growth, as [`Vec::reserve`]).
     pub fn reserve(&mut self, rows: usize, entries: usize) {
@@ -269,14 +254,6 @@ mod tests {
             let mut appended = first.clone();
             appended.append(&other);
             appended.append(&StencilTable::default());
-            // Taking `other`'s storage (into a table without rows) or
-            // appending it owned (behind rows) gives the same rows, and
-            // an empty table taken or appended changes nothing.
-            let mut owned = first.clone();
-            owned.try_append_owned(other.clone()).unwrap();
-            owned.try_append_owned(StencilTable::default()).unwrap();
-            assert_eq!(rows(&owned), rows(&appended));
-            assert_eq!(owned.entries(), appended.entries());
             let mut pushed = first.clone();
             for i in 0..other.len() {
                 pushed.push_row(other.row(i));

@@ -363,7 +363,7 @@ impl<R: Real> StreamTessellator<R> {
         self.injective = true;
         let first_vertex = self.summary.vertices;
         for k in 0..count {
-            let s = self.weld(k, sink);
+            let s = self.weld(k);
             self.local.push(s);
         }
         // An interior sample whose vertex this patch made, in a patch whose
@@ -380,7 +380,7 @@ impl<R: Real> StreamTessellator<R> {
         }
         for f in 0..self.raw.faces.len() {
             let (face, tag) = (self.raw.faces[f], self.raw.tags[f]);
-            self.face(face, tag, sink);
+            self.face(face, tag);
         }
         for k in 0..count {
             let s = self.local[k];
@@ -532,7 +532,7 @@ impl<R: Real> StreamTessellator<R> {
     }
 
     /// Welds sample `k` of the current patch; returns its slot.
-    fn weld(&mut self, k: usize, sink: &mut dyn MeshSink<R>) -> u32 {
+    fn weld(&mut self, k: usize) -> u32 {
         let position = self.raw.positions[k];
         let x = weld_coordinates(position);
         let near = self.near(&x);
@@ -573,8 +573,7 @@ impl<R: Real> StreamTessellator<R> {
             slot.seq = seq;
             let known = (slot.sampled && slot.normal != Point3::ZERO).then_some(slot.normal);
             slot.done = known.is_some();
-            let position = slot.position;
-            self.hand_over(Waiting::Vertex(position, known), sink);
+            self.queue.push_back(Waiting::Vertex(slot.position, known));
         } else {
             let slot = &self.slots[s as usize];
             if !slot.done && slot.sampled && slot.normal != Point3::ZERO {
@@ -788,7 +787,7 @@ impl<R: Real> StreamTessellator<R> {
     }
 
     /// One face of the current patch, in sample indices.
-    fn face(&mut self, f: Face, tag: u32, sink: &mut dyn MeshSink<R>) {
+    fn face(&mut self, f: Face, tag: u32) {
         let slots: Face = f.map(|k| self.local[k as usize]);
         let face = slots.map(|s| self.slots[s as usize].vertex);
         if face.is_degenerate() {
@@ -836,7 +835,7 @@ impl<R: Real> StreamTessellator<R> {
                 }
             }
         }
-        self.hand_over(Waiting::Face(face, tag), sink);
+        self.queue.push_back(Waiting::Face(face, tag));
     }
 
     /// One directed edge of face `face`, for the closedness check.
@@ -872,29 +871,6 @@ impl<R: Real> StreamTessellator<R> {
         if first.from == a {
             blame(first.seq, a, b, first.face, EdgeFault::SameDirection);
         }
-    }
-
-    /// Hands `w` to the sink at once when nothing waits before it and it
-    /// waits for nothing itself, else queues it (the order is the queue's
-    /// either way; `queue_front` counts what went past the queue too, so a
-    /// vertex's `seq` stays its place in the output).
-    #[inline]
-    fn hand_over(&mut self, w: Waiting<R>, sink: &mut dyn MeshSink<R>) {
-        if self.queue.is_empty() {
-            match w {
-                Waiting::Vertex(p, Some(n)) => {
-                    self.queue_front += 1;
-                    return sink.vertex(p, n);
-                }
-                Waiting::Face(f, tag) => {
-                    self.queue_front += 1;
-                    return sink.face(f, tag);
-                }
-                Waiting::Vertex(_, None) => {}
-            }
-        }
-        self.queue.push_back(w);
-        self.summary.peak_waiting = self.summary.peak_waiting.max(self.queue.len());
     }
 
     /// Hands over the waiting output up to the first vertex without a normal.
