@@ -15,7 +15,10 @@
 #      top functions, self cost).
 #
 # Needs libosd-dev, g++ and valgrind (apt-get install libosd-dev g++ valgrind).
-# Usage: scripts/osd-whole-job.sh [--no-wall] [--no-callgrind] [--only NAME,NAME]
+# Usage: scripts/osd-whole-job.sh [--no-wall] [--no-callgrind] [--no-trim] [--only NAME,NAME]
+# (--no-trim: glibc's heap trimming and mmap threshold fixed for both sides'
+# processes, so that neither faults its heap in again on every timed run;
+# see "Four more runs" in docs/benchmarks.md)
 # (meshes of mesh/benches/osd_whole_job.rs; default: the 300x300 torus, the
 # 9·10^4-face torus with extraordinary points and the three 10^4-face meshes).
 set -euo pipefail
@@ -28,6 +31,7 @@ while [ $# -gt 0 ]; do
     case "$1" in
     --no-wall) wall=0 ;;
     --no-callgrind) callgrind=0 ;;
+    --no-trim) export GLIBC_TUNABLES=glibc.malloc.trim_threshold=4000000000:glibc.malloc.mmap_threshold=4000000000 ;;
     --only) only=$2; shift ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
     esac
@@ -39,7 +43,7 @@ bin=$(nice cargo bench -p capdiv-mesh --bench osd_whole_job --no-run 2>&1 |
 [ -x "$bin" ] || { echo "could not build the bench" >&2; exit 1; }
 
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'),"\
-    "load average at start $(cut -d' ' -f1-3 /proc/loadavg)"
+    "load average at start $(cut -d' ' -f1-3 /proc/loadavg)${GLIBC_TUNABLES:+, GLIBC_TUNABLES=$GLIBC_TUNABLES}"
 echo
 
 if [ "$wall" = 1 ]; then
