@@ -971,7 +971,7 @@ impl<R: Real + Display + LowerExp, W: Write> MeshSink<R> for ObjWriter<W> {
 
 #[cfg(test)]
 mod tests {
-    use super::floor_to_i64;
+    use super::{floor_to_i64, StreamTessellator, CELL};
     use alloc::vec;
 
     #[test]
@@ -1014,5 +1014,70 @@ mod tests {
         for x in values {
             assert_eq!(floor_to_i64(x), libm::floor(x) as i64, "x = {x:e}");
         }
+    }
+
+    /// Every point within the tolerance of `x` (per coordinate) lies in a
+    /// cell the search from `x` covers, and a search of one cell covers
+    /// `x`'s own: the property that makes the weld find the same vertex
+    /// whatever cells it skips. Points on and near cell faces, at several
+    /// tolerances and magnitudes (past `FRACTION_MEANINGFUL` cells too).
+    #[test]
+    fn a_search_covers_every_cell_within_the_tolerance() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let (mut checked, mut single, mut spread) = (0usize, 0usize, 0usize);
+        for tol in [1e-9, 1e-3, 0.25, 7.0] {
+            let t = StreamTessellator::<f64>::new(4, tol);
+            let cell = CELL * tol;
+            for _ in 0..4000 {
+                let mut x = [0.0; 3];
+                for c in &mut x {
+                    let r = next();
+                    // A cell index of up to 2^44 (past the meaningful
+                    // fraction), then a place in the cell: anywhere, or
+                    // within a few tolerances of either face.
+                    let k = (r % (1 << 44)) as i64 >> (r >> 58);
+                    let k = if r & (1 << 57) != 0 { -k } else { k };
+                    let f = match (r >> 44) % 3 {
+                        0 => ((r >> 20) % 1000) as f64 / 1000.0,
+                        1 => ((r >> 20) % 300) as f64 / 100.0 / CELL,
+                        _ => 1.0 - ((r >> 20) % 300) as f64 / 100.0 / CELL,
+                    };
+                    *c = (k as f64 + f) * cell;
+                }
+                let near = t.near(&x);
+                if near.single() {
+                    single += 1;
+                } else {
+                    spread += 1;
+                }
+                for d in 0..3 {
+                    assert!(near.lo(d) <= near.key[d] && near.key[d] <= near.hi(d));
+                }
+                for corner in 0..27 {
+                    let mut y = x;
+                    let mut c = corner;
+                    for v in &mut y {
+                        *v += [-tol, 0.0, tol][c % 3];
+                        c /= 3;
+                    }
+                    let other = t.near(&y);
+                    for d in 0..3 {
+                        assert!(
+                            (near.lo(d)..=near.hi(d)).contains(&other.key[d]),
+                            "tol {tol}, x {x:?}, y {y:?}, axis {d}"
+                        );
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(single > 1000 && spread > 1000, "{single} {spread}");
+        assert_eq!(checked, 4 * 4000 * 27);
     }
 }
