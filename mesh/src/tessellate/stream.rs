@@ -646,8 +646,9 @@ impl<R: Real> StreamTessellator<R> {
             let q = c / cell;
             // Saturating; NaN gives 0.
             let k = floor_to_i64(q);
-            // Both neighbours where the fraction means nothing (NaN too).
-            #[allow(clippy::neg_cmp_op_on_partial_ord)] // NaN is wide too
+            // Both neighbours where the fraction means nothing (NaN too,
+            // hence the negated comparison).
+            #[allow(clippy::neg_cmp_op_on_partial_ord)]
             let wide = !(libm::fabs(q) < FRACTION_MEANINGFUL);
             let f = q - k as f64;
             near.key[d] = k;
@@ -694,8 +695,8 @@ impl<R: Real> StreamTessellator<R> {
         self.fill_slot(cell, head, position)
     }
 
-    /// Fills the next free slot (the one [`Self::insert`] chained in front
-    /// of `head` in cell `cell`) and returns it.
+    /// Fills the slot that the caller chained in front of `head` in cell
+    /// `cell` (the last free one, else a new one) and returns it.
     fn fill_slot(&mut self, cell: u64, head: u32, position: Point3<R>) -> u32 {
         let slot = Slot {
             next: head,
