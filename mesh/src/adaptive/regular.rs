@@ -37,10 +37,17 @@ fn rot((a, b): (i32, i32)) -> (i32, i32) {
 /// patch against the rings of the other, more than one level apart along
 /// the sharp edge between them.)
 pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
-    if !sector_is_regular(m, c, fan) {
+    // The vertex's semi-sharpness and rule hold for all its sectors: read
+    // once here, not once per sector (each is a pass over the vertex's
+    // edges, which made a vertex of valence `n` cost `n³`).
+    let v = m.corner_vertex[c as usize] as usize;
+    if m.has_semi_sharp(v) {
         return false;
     }
-    let v = m.corner_vertex[c as usize] as usize;
+    let rule = m.rule(v);
+    if !sector_fits(m, c, rule, fan) {
+        return false;
+    }
     if fan.len() == m.vertex_corners(v).len() {
         return true;
     }
@@ -48,15 +55,13 @@ pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
     m.vertex_corners(v)
         .iter()
         .filter(|k| !fan.contains(k))
-        .all(|&k| sector_is_regular(m, k, &mut other))
+        .all(|&k| sector_fits(m, k, rule, &mut other))
 }
 
-/// Whether the sector of corner `c` fits its vertex's rule.
-fn sector_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
+/// Whether the sector of corner `c` fits `rule`, its vertex's rule (a
+/// vertex without semi-sharpness).
+fn sector_fits(m: &Level, c: Corner, rule: Rule, fan: &mut Vec<Corner>) -> bool {
     let v = m.corner_vertex[c as usize] as usize;
-    if m.has_semi_sharp(v) {
-        return false;
-    }
     let closed = m.fan(c, fan);
     if fan
         .iter()
@@ -64,7 +69,6 @@ fn sector_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
     {
         return false;
     }
-    let rule = m.rule(v);
     if closed {
         return fan.len() == 4 && rule == Rule::Smooth && m.vertex_corners(v).len() == 4;
     }
