@@ -39,7 +39,7 @@ fn rot((a, b): (i32, i32)) -> (i32, i32) {
 pub fn corner_is_regular(m: &Level, c: Corner, fan: &mut Vec<Corner>) -> bool {
     // The vertex's semi-sharpness and rule hold for all its sectors: read
     // once here, not once per sector (each is a pass over the vertex's
-    // edges, which made a vertex of valence `n` cost `n³`).
+    // edges; per sector, a vertex of valence `n` would cost `n³`).
     let v = m.corner_vertex[c as usize] as usize;
     if m.has_semi_sharp(v) {
         return false;
