@@ -640,15 +640,19 @@ fn hash_grid_weld_matches_brute_force() {
     );
 }
 
-#[test]
-fn closedness_check_reports_the_first_bad_edge() {
-    // A tetrahedron, counter-clockwise seen from outside.
-    let tet = [
+/// A tetrahedron's faces, counter-clockwise seen from outside.
+fn tetrahedron() -> [Face; 4] {
+    [
         Face::Tri([0, 2, 1]),
         Face::Tri([0, 1, 3]),
         Face::Tri([1, 2, 3]),
         Face::Tri([2, 0, 3]),
-    ];
+    ]
+}
+
+#[test]
+fn closedness_check_reports_the_first_bad_edge() {
+    let tet = tetrahedron();
     assert_eq!(is_closed_and_oriented(&tet), Ok(()));
     let mut flipped = tet;
     flipped[2] = Face::Tri([1, 3, 2]);
@@ -687,13 +691,7 @@ fn closedness_check_reports_the_first_bad_edge() {
 
 #[test]
 fn in_order_check_pairs_edges_as_they_come() {
-    // A tetrahedron, counter-clockwise seen from outside.
-    let tet = [
-        Face::Tri([0, 2, 1]),
-        Face::Tri([0, 1, 3]),
-        Face::Tri([1, 2, 3]),
-        Face::Tri([2, 0, 3]),
-    ];
+    let tet = tetrahedron();
     assert_eq!(closed_in_order(&tet), Ok(()));
     let mut flipped = tet;
     flipped[2] = Face::Tri([1, 3, 2]);

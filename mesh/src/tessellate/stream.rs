@@ -537,11 +537,13 @@ impl<R: Real> StreamTessellator<R> {
         let x = weld_coordinates(position);
         let near = self.near(&x);
         let s = if near.single() {
-            self.find_or_insert_in_cell(&x, cell_name(near.key), position)
+            // One cell to search: the search and the insertion share a
+            // look-up.
+            self.insert(cell_name(near.key), position, Some(&x))
         } else {
             match self.find(&x, &near) {
                 Some(s) => s,
-                None => self.insert(cell_name(near.key), position),
+                None => self.insert(cell_name(near.key), position, None),
             }
         };
         let new = self.slots[s as usize].vertex == NONE;
@@ -658,18 +660,22 @@ impl<R: Real> StreamTessellator<R> {
         near
     }
 
-    /// [`Self::find`] in the one cell `cell` and, when nothing there is
-    /// within the tolerance of `x`, [`Self::insert`] into it: one look-up in
-    /// the cell table for both.
-    fn find_or_insert_in_cell(&mut self, x: &[f64; 3], cell: u64, position: Point3<R>) -> u32 {
+    /// A new slot for a new vertex in cell `cell` (its number set by the
+    /// caller), chained in front of the cell's others. With `search`, first
+    /// the lowest-numbered vertex of that cell within the tolerance of the
+    /// point, as [`Self::find`] of that one cell gives it, if there is one:
+    /// one look-up in the cell table for the search and the insertion.
+    fn insert(&mut self, cell: u64, position: Point3<R>, search: Option<&[f64; 3]>) -> u32 {
         let tol = self.tol;
         let s = self.free.last().copied().unwrap_or(self.slots.len() as u32);
         let head = match self.cells.entry(cell) {
             Entry::Occupied(mut first) => {
-                let mut best: Option<u32> = None;
-                closest_in_chain(&self.slots, *first.get(), x, tol, &mut best);
-                if let Some(b) = best {
-                    return b;
+                if let Some(x) = search {
+                    let mut best: Option<u32> = None;
+                    closest_in_chain(&self.slots, *first.get(), x, tol, &mut best);
+                    if let Some(b) = best {
+                        return b;
+                    }
                 }
                 core::mem::replace(first.get_mut(), s)
             }
@@ -678,26 +684,6 @@ impl<R: Real> StreamTessellator<R> {
                 NONE
             }
         };
-        self.fill_slot(cell, head, position)
-    }
-
-    /// A new slot for a new vertex in cell `cell` (its number set by the
-    /// caller).
-    fn insert(&mut self, cell: u64, position: Point3<R>) -> u32 {
-        let s = self.free.last().copied().unwrap_or(self.slots.len() as u32);
-        let head = match self.cells.entry(cell) {
-            Entry::Occupied(mut first) => core::mem::replace(first.get_mut(), s),
-            Entry::Vacant(none) => {
-                none.insert(s);
-                NONE
-            }
-        };
-        self.fill_slot(cell, head, position)
-    }
-
-    /// Fills the slot that the caller chained in front of `head` in cell
-    /// `cell` (the last free one, else a new one) and returns it.
-    fn fill_slot(&mut self, cell: u64, head: u32, position: Point3<R>) -> u32 {
         let slot = Slot {
             next: head,
             cell,
