@@ -87,26 +87,50 @@ fn tagged_tetrahedron_tessellates_closed() {
 /// The fuzz seed `obj-repeated-vertex`: a 2×2 grid of quads plus a face
 /// that lists a vertex twice (`f 3 6 3 2`, its two edges to vertex 6 each
 /// run twice). Planned as OpenSubdiv takes it (tests/osd_surface.rs compares
-/// such faces with OpenSubdiv), every face covered, in well under a second
-/// (the refinement once ran for seconds on it); it and faces that are all
-/// one vertex, alternate two, or close a degenerate edge beside a face on
-/// the same vertices evaluate finitely and tessellate at depths 1–3, either
-/// mode.
+/// such faces with OpenSubdiv), every face covered, the refinement's work in
+/// rings: from depth 3 on, each further level of depth adds the same number
+/// of points, stencil entries and patches (the rings around the irregular
+/// vertices are alike from level to level) and no patch lies deeper than the
+/// depth. (The refinement once ran for seconds on this input; a count that
+/// grew by a factor per level, or a refinement that ran past the depth,
+/// fails here.) It and faces that are all one vertex, alternate two, or
+/// close a degenerate edge beside a face on the same vertices evaluate
+/// finitely and tessellate at depths 1–3, either mode.
 #[test]
-fn face_with_repeated_vertex_is_planned_quickly() {
+fn face_with_repeated_vertex_is_planned_in_alike_rings() {
     let obj = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0.5\nv 2 1 0\n\
                v 0 2 0\nv 1 2 0\nv 2 2 0\n\
                f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\nf 3 6 3 2\n";
     let mesh = parse_obj(obj).unwrap();
     for cc in [false, true] {
-        let start = std::time::Instant::now();
-        let options = PlanOptions {
-            catmull_clark: cc,
-            ..PlanOptions::default()
-        };
-        let plan = SurfacePlan::for_mesh(&mesh, options).unwrap();
-        assert!(plan.uncovered.is_empty(), "{:?}", plan.uncovered);
-        assert!(start.elapsed().as_secs_f64() < 1.0);
+        // Points, stencil entries and patches per depth.
+        let counts: Vec<[isize; 3]> = (3..=8)
+            .map(|depth| {
+                let options = PlanOptions {
+                    catmull_clark: cc,
+                    depth,
+                    ..PlanOptions::default()
+                };
+                let plan = SurfacePlan::for_mesh(&mesh, options).unwrap();
+                assert!(plan.uncovered.is_empty(), "{:?}", plan.uncovered);
+                let deepest = plan.regular.iter().map(|r| r.level).max();
+                assert_eq!(deepest, Some(depth), "cc {cc}");
+                [
+                    plan.phantoms.len() as isize,
+                    plan.phantoms.entries() as isize,
+                    plan.regular.len() as isize,
+                ]
+            })
+            .collect();
+        let steps: Vec<[isize; 3]> = counts
+            .windows(2)
+            .map(|w| core::array::from_fn(|i| w[1][i] - w[0][i]))
+            .collect();
+        assert!(steps[0].iter().all(|&d| d > 0), "cc {cc}: {steps:?}");
+        assert!(
+            steps.iter().all(|s| *s == steps[0]),
+            "cc {cc}: per level of depth from 3 on: {steps:?}"
+        );
     }
     let odd = [
         "v 0 0 0\nf 1 1 1\n",
