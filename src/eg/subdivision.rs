@@ -432,8 +432,9 @@ impl PatchDomain {
     /// `k % 3`, §9): the level-(m−1) hole is `[0, 2^−(m−1)]²` and the ring's
     /// pieces have half its size. Shared by EG and Catmull-Clark caps.
     pub(crate) fn of_ring_patch(level: u32, k: usize) -> Self {
+        // 2^−level exactly (0 past the subnormals), by exponent arithmetic.
         let exponent = i32::try_from(level).unwrap_or(i32::MAX);
-        let size = libm::pow(0.5, f64::from(exponent));
+        let size = libm::scalbn(1.0, -exponent);
         let (x0, y0) = match k % PATCHES_PER_SECTOR {
             0 => (size, 0.0),
             1 => (0.0, size),
