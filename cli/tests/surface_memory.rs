@@ -64,3 +64,75 @@ fn surface_out_of_memory_is_one_line_and_exit_2() {
     assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
     assert!(!output.exists());
 }
+
+/// A torus of `n × n` quads with every edge creased at `sharpness`, as OBJ
+/// text with OpenSubdiv's `t crease` tags.
+fn creased_quad_torus(n: usize, sharpness: f64) -> String {
+    let mut text = String::new();
+    for i in 0..n {
+        for j in 0..n {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            let b = std::f64::consts::TAU * j as f64 / n as f64;
+            let r = 3.0 + b.cos();
+            let _ = writeln!(text, "v {} {} {}", r * a.cos(), r * a.sin(), b.sin());
+        }
+    }
+    let id = |i: usize, j: usize| (i % n) * n + (j % n);
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            let _ = writeln!(text, "f {} {} {} {}", a + 1, b + 1, c + 1, d + 1);
+        }
+    }
+    for i in 0..n {
+        for j in 0..n {
+            let _ = writeln!(
+                text,
+                "t crease 2/1/0 {} {} {sharpness}",
+                id(i, j),
+                id(i + 1, j)
+            );
+            let _ = writeln!(
+                text,
+                "t crease 2/1/0 {} {} {sharpness}",
+                id(i, j),
+                id(i, j + 1)
+            );
+        }
+    }
+    text
+}
+
+#[test]
+fn adaptive_refinement_out_of_memory_is_one_line_and_exit_2() {
+    let dir = tempdir();
+    let input = dir.path().join("creased.obj");
+    // 1,600 quads, every edge creased at sharpness 6: every face goes to the
+    // adaptive refinement, which refines along the creases until their
+    // sharpness has decayed (about 1 GB of analysis, most of it the
+    // refinement's levels, points and patches). The limit leaves room for
+    // the input and its topology, not for the refinement: the refusal comes
+    // from inside it.
+    std::fs::write(&input, creased_quad_torus(40, 6.0)).unwrap();
+    let output = dir.path().join("out.obj");
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v 400000 && exec '{bin}' surface '{}' --threads 1 --format obj -o '{}'",
+        s(&input),
+        s(&output)
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("run sh");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(out.stdout.is_empty());
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "stderr: {stderr}");
+    assert!(lines[0].starts_with("error: "), "{stderr}");
+    assert!(lines[0].contains("out of memory"), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
+    assert!(!output.exists());
+}

@@ -5,6 +5,12 @@
 //!
 //! The helpers reserve the full size up front; pushes that stay within the
 //! reservation do not allocate again.
+//!
+//! The analysis (topology, whole-mesh steps, the adaptive refinement with
+//! its levels, points and patches, the plan) reserves this way; what it
+//! allocates as it is has the size of one vertex's neighbourhood (a fan, a
+//! stencil row being built, a cap's c-net). `tests/analysis_out_of_memory.rs`
+//! refuses each of its allocations of 4 KB or more in turn.
 
 use alloc::vec::Vec;
 use core::fmt;
@@ -53,6 +59,7 @@ pub fn bytes_of<T>(n: usize) -> usize {
 
 /// Room for `additional` more items in `v`, or the error naming the bytes
 /// that the new buffer would take.
+#[inline]
 pub fn reserve<T>(v: &mut Vec<T>, additional: usize) -> Result<(), OutOfMemory> {
     v.try_reserve(additional)
         .map_err(|_| OutOfMemory::of::<T>(v.len().saturating_add(additional)))
@@ -79,6 +86,7 @@ pub fn filled<T: Clone>(len: usize, value: T) -> Result<Vec<T>, OutOfMemory> {
 }
 
 /// Appends `x`, growing the buffer (doubling, as `push` does) fallibly.
+#[inline]
 pub fn push<T>(v: &mut Vec<T>, x: T) -> Result<(), OutOfMemory> {
     if v.len() == v.capacity() {
         reserve(v, 1)?;
@@ -88,10 +96,16 @@ pub fn push<T>(v: &mut Vec<T>, x: T) -> Result<(), OutOfMemory> {
 }
 
 /// The items of `iter` in a vector, reserved for the iterator's lower size
-/// bound up front and grown fallibly past it.
+/// bound up front and grown fallibly past it. An iterator that knows its
+/// length exactly is copied in one `extend` (no check per item).
 pub fn collect<T>(iter: impl IntoIterator<Item = T>) -> Result<Vec<T>, OutOfMemory> {
     let iter = iter.into_iter();
-    let mut v = with_capacity(iter.size_hint().0)?;
+    let (lower, upper) = iter.size_hint();
+    let mut v = with_capacity(lower)?;
+    if upper == Some(lower) {
+        v.extend(iter);
+        return Ok(v);
+    }
     for x in iter {
         push(&mut v, x)?;
     }
@@ -106,6 +120,7 @@ pub fn to_vec<T: Clone>(items: &[T]) -> Result<Vec<T>, OutOfMemory> {
 }
 
 /// Room for `additional` more entries in a hash map.
+#[inline]
 pub fn reserve_map<K, V, S>(
     m: &mut hashbrown::HashMap<K, V, S>,
     additional: usize,
@@ -119,6 +134,7 @@ where
 }
 
 /// Room for `additional` more entries in a hash set.
+#[inline]
 pub fn reserve_set<K, S>(
     m: &mut hashbrown::HashSet<K, S>,
     additional: usize,

@@ -50,7 +50,7 @@ use crate::error::MeshError;
 use crate::global_step::{try_global_step, PolarSeed};
 use crate::grid::{face_grid, interior_face_grid, GridPoint};
 use crate::input::MeshInput;
-use crate::mem;
+use crate::mem::{self, OutOfMemory};
 use crate::stencil::{Primvar, StencilTable};
 use crate::tagged_step::tagged_step;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
@@ -412,13 +412,19 @@ impl<'t> SurfacePlan<'t> {
     /// ```
     pub fn for_mesh(mesh: &MeshInput, options: PlanOptions<'t>) -> Result<Self, MeshError> {
         validate(mesh)?;
-        let topo = Topology::new(mesh).ok();
+        // A mesh Topology refuses (not a manifold) is planned from its
+        // tagged base alone; an allocation refused is an error.
+        let topo = match Topology::new(mesh) {
+            Ok(t) => Some(t),
+            Err(e @ MeshError::OutOfMemory { .. }) => return Err(e),
+            Err(_) => None,
+        };
         if mesh.tags.is_plain() {
             if let Some(t) = &topo {
                 return Self::new(t, options);
             }
         }
-        let tagged = tagged_base(mesh);
+        let tagged = tagged_base(mesh)?;
         Self::build(topo.as_ref(), Some(tagged), mesh.vertices.len(), options)
     }
 
@@ -436,7 +442,7 @@ impl<'t> SurfacePlan<'t> {
             mem::collect((0..input_faces as u32).map(FaceChart::input))?;
         let mut steps = Vec::new();
         let mut needed = Vec::new();
-        let mut level_topo = topo.cloned();
+        let mut level_topo = topo.map(Topology::try_clone).transpose()?;
         // Per vertex at the current level: has it been a C²PS pole (refined by
         // the step), and how often.
         let mut pole_steps: Vec<u32> = mem::filled(num_vertices, 0)?;
@@ -483,10 +489,11 @@ impl<'t> SurfacePlan<'t> {
             {
                 break;
             }
-            let seeds: Vec<PolarSeed> = (0..t.num_vertices())
-                .filter(|&v| !options.catmull_clark && is_fan(t, v))
-                .filter_map(|v| step_seed(t, v, clean))
-                .collect();
+            let seeds: Vec<PolarSeed> = mem::collect(
+                (0..t.num_vertices())
+                    .filter(|&v| !options.catmull_clark && is_fan(t, v))
+                    .filter_map(|v| step_seed(t, v, clean)),
+            )?;
             let (refined, next_base) = match &tagged {
                 None => (try_global_step(t, &charts, &seeds)?, None),
                 Some(b) => match tagged_step(t, b, &charts, &seeds)? {
@@ -495,7 +502,7 @@ impl<'t> SurfacePlan<'t> {
                 },
             };
             if steps.is_empty() {
-                needed = uncovered_list(&pass.uncovered, &charts, true);
+                needed = uncovered_list(&pass.uncovered, &charts, true)?;
             }
             // A fan a tag reached is Catmull-Clark: its triangles are quads
             // after the step, and the pole's fallback stays the tag's.
@@ -527,7 +534,7 @@ impl<'t> SurfacePlan<'t> {
             level_topo = Some(next);
         }
         if steps.is_empty() {
-            needed = uncovered_list(&pass.uncovered, &charts, false);
+            needed = uncovered_list(&pass.uncovered, &charts, false)?;
         }
         let vertices = level_topo
             .as_ref()
@@ -545,7 +552,7 @@ impl<'t> SurfacePlan<'t> {
             uncovered: Vec::new(),
             needed_refinement: needed,
             last_holes: Vec::new(),
-            fallbacks: pass.fallbacks.clone(),
+            fallbacks: mem::to_vec(&pass.fallbacks)?,
             creases_not_edges: 0,
             level_jumps: 0,
             hole_conflicts: 0,
@@ -582,7 +589,7 @@ impl<'t> SurfacePlan<'t> {
                 Some(b) => b,
                 None => {
                     let t = level_topo.as_ref().ok_or(MeshError::Empty)?;
-                    plain_base(t)
+                    plain_base(t)?
                 }
             };
             let roots: Vec<(u32, FaceChart)> = mem::collect(
@@ -743,7 +750,7 @@ impl<'t> SurfacePlan<'t> {
                 caps: true,
             },
             first,
-        );
+        )?;
         self.phantoms
             .try_reserve(a.points.rows.len(), a.points.rows.entries())?;
         mem::reserve(&mut self.regular, a.patches.len())?;
@@ -782,12 +789,14 @@ impl<'t> SurfacePlan<'t> {
         }
         // A vertex of the analysed level whose cap came a level or more
         // further in has not fallen back.
-        let capped: BTreeSet<u32> = a
-            .caps
-            .iter()
-            .filter_map(|cap| a.points.vertex_origin(cap.center))
-            .collect();
-        self.fallbacks.retain(|(v, _)| !capped.contains(v));
+        let mut capped: Vec<u32> = mem::collect(
+            a.caps
+                .iter()
+                .filter_map(|cap| a.points.vertex_origin(cap.center)),
+        )?;
+        capped.sort_unstable();
+        self.fallbacks
+            .retain(|(v, _)| capped.binary_search(v).is_err());
         mem::reserve(&mut self.extraordinary, a.caps.len())?;
         for cap in &a.caps {
             let sectors: Vec<FaceChart> = cap.sectors.iter().flatten().copied().collect();
@@ -808,10 +817,12 @@ impl<'t> SurfacePlan<'t> {
                 level: self.steps.len() as u32 + cap.level,
             });
         }
+        mem::reserve(&mut self.last_holes, a.holes.len())?;
         self.last_holes.extend(a.holes.iter().map(|h| h.chart));
         self.hole_conflicts = a.hole_conflicts;
         self.creases_not_edges = base.creases_not_edges;
         self.level_jumps = a.level_jumps;
+        mem::reserve(&mut self.uncovered, a.unresolved_faces.len())?;
         for &face in &a.unresolved_faces {
             self.uncovered.push(UncoveredFace {
                 face,
@@ -927,17 +938,18 @@ fn uncovered_list(
     reasons: &[Option<Reason>],
     charts: &[FaceChart],
     fixable_only: bool,
-) -> Vec<UncoveredFace> {
-    let mut out: Vec<UncoveredFace> = reasons
-        .iter()
-        .enumerate()
-        .filter_map(|(f, r)| r.map(|r| (charts[f].face, r)))
-        .filter(|(_, r)| !fixable_only || r.refinement_helps())
-        .map(|(face, reason)| UncoveredFace { face, reason })
-        .collect();
+) -> Result<Vec<UncoveredFace>, OutOfMemory> {
+    let mut out: Vec<UncoveredFace> = mem::collect(
+        reasons
+            .iter()
+            .enumerate()
+            .filter_map(|(f, r)| r.map(|r| (charts[f].face, r)))
+            .filter(|(_, r)| !fixable_only || r.refinement_helps())
+            .map(|(face, reason)| UncoveredFace { face, reason }),
+    )?;
     out.sort_by_key(|u| u.face);
     out.dedup_by_key(|u| u.face);
-    out
+    Ok(out)
 }
 
 /// Whether face `f` is clean (no tag reaches it; every face without tags).

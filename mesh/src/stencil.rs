@@ -132,6 +132,16 @@ impl StencilTable {
         self.weights.reserve(entries);
     }
 
+    /// Whether `rows` more rows of `entries` entries in all fit without
+    /// growing the table.
+    #[inline]
+    pub fn has_room(&self, rows: usize, entries: usize) -> bool {
+        let first = usize::from(self.offsets.is_empty());
+        self.offsets.capacity() - self.offsets.len() >= rows + first
+            && self.indices.capacity() - self.indices.len() >= entries
+            && self.weights.capacity() - self.weights.len() >= entries
+    }
+
     /// Room for `rows` more rows of `entries` entries in all, reserved
     /// fallibly so that the pushes that follow do not allocate.
     pub fn try_reserve(

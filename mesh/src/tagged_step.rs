@@ -61,7 +61,7 @@ pub fn tagged_step(
         smooth_triangles: base.smooth_triangles,
     };
     let mut points = Points::new(nv as u32);
-    let child = subdivide(m, &faces, rules, &mut points);
+    let child = subdivide(m, &faces, rules, &mut points)?;
     let c = &child.level;
     // Per vertex of the child level: its index in the step's numbering.
     // The child of face f at its corner k is (vertex point of corner k,
@@ -112,6 +112,7 @@ pub fn tagged_step(
         let s = c.edge_sharpness[e];
         let (a, b) = (index[a as usize], index[b as usize]);
         if s > 0.0 && a != NONE && b != NONE {
+            mem::reserve_map(&mut edge_sharpness, 1)?;
             edge_sharpness.insert((a.min(b), a.max(b)), s);
         }
     }
@@ -122,6 +123,6 @@ pub fn tagged_step(
         &refined.parent,
         vertex_sharpness,
         |a, b| edge_sharpness.get(&(a, b)).copied().unwrap_or(0.0),
-    );
+    )?;
     Ok(Some((refined, level)))
 }

@@ -69,6 +69,20 @@ pub struct Topology {
 }
 
 impl Topology {
+    /// A copy, its buffers reserved fallibly (`Clone` aborts on a refused
+    /// allocation).
+    pub fn try_clone(&self) -> Result<Self, mem::OutOfMemory> {
+        Ok(Topology {
+            face_start: mem::to_vec(&self.face_start)?,
+            corner_vertex: mem::to_vec(&self.corner_vertex)?,
+            corner_face: mem::to_vec(&self.corner_face)?,
+            twin: mem::to_vec(&self.twin)?,
+            vertex_start: mem::to_vec(&self.vertex_start)?,
+            vertex_faces: mem::to_vec(&self.vertex_faces)?,
+            vertex_boundary: mem::to_vec(&self.vertex_boundary)?,
+        })
+    }
+
     /// Validates `mesh` and builds its half-edges. See the module doc for the
     /// checks and their order.
     ///
@@ -167,7 +181,7 @@ impl Topology {
             fill[v] += 1;
         }
         // Destinations looked up once: the scans below read each several times.
-        let dest: Vec<u32> = (0..nh as u32).map(|h| self.dest(h)).collect();
+        let dest: Vec<u32> = mem::collect((0..nh as u32).map(|h| self.dest(h)))?;
         // In face order, so the error names the first offending face.
         for h in 0..nh {
             let v = self.corner_vertex[h] as usize;

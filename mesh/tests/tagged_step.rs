@@ -533,7 +533,7 @@ fn the_tagged_step_of_an_untagged_mesh_is_the_plain_step() {
             .collect();
         let plain = global_step(&t, &charts, &seeds);
         let (tagged, level) =
-            capdiv_mesh::tagged_step::tagged_step(&t, &plain_base(&t), &charts, &seeds)
+            capdiv_mesh::tagged_step::tagged_step(&t, &plain_base(&t).unwrap(), &charts, &seeds)
                 .expect("step")
                 .expect("the base is the topology's");
         assert_eq!(tagged.faces, plain.faces, "{name}");

@@ -7,9 +7,8 @@
 use super::crease::is_infinite;
 use super::level::Level;
 use crate::input::{BoundaryInterpolation, CreaseMethod, MeshInput, TriangleSubdivision};
+use crate::mem::{self, OutOfMemory};
 use crate::topology::Topology;
-use alloc::collections::BTreeMap;
-use alloc::vec;
 use alloc::vec::Vec;
 
 /// A base level and what the analysis needs to know of it.
@@ -48,35 +47,48 @@ impl TaggedBase {
     }
 }
 
-/// The base level of `mesh` with its tags (indices already validated).
-pub fn tagged_base(mesh: &MeshInput) -> TaggedBase {
+/// The base level of `mesh` with its tags (indices already validated),
+/// every buffer reserved fallibly.
+pub fn tagged_base(mesh: &MeshInput) -> Result<TaggedBase, OutOfMemory> {
     let tags = &mesh.tags;
     let nv = mesh.vertices.len();
-    let faces: Vec<&[u32]> = mesh.faces.iter().map(|f| &f[..]).collect();
-    let mut sharp: BTreeMap<(u32, u32), f32> = BTreeMap::new();
-    for c in &tags.creases {
+    let faces: Vec<&[u32]> = mem::collect(mesh.faces.iter().map(|f| &f[..]))?;
+    // Crease sharpness by vertex pair (smaller first), the last tag of a
+    // pair winning: sorted by pair, stably, then the last of each run kept.
+    let mut sharp: Vec<((u32, u32), f32)> = mem::collect(tags.creases.iter().map(|c| {
         let [a, b] = c.vertices;
-        sharp.insert((a.min(b), a.max(b)), sanitize(c.sharpness));
+        ((a.min(b), a.max(b)), sanitize(c.sharpness))
+    }))?;
+    sharp.sort_by_key(|&(pair, _)| pair);
+    let mut kept = 0;
+    for i in 0..sharp.len() {
+        if i + 1 == sharp.len() || sharp[i + 1].0 != sharp[i].0 {
+            sharp[kept] = sharp[i];
+            kept += 1;
+        }
     }
-    let mut vsharp = vec![0.0f32; nv];
+    sharp.truncate(kept);
+    let sharpness_of = |a: u32, b: u32| match sharp.binary_search_by_key(&(a, b), |&(p, _)| p) {
+        Ok(i) => sharp[i].1,
+        Err(_) => 0.0,
+    };
+    let mut vsharp = mem::filled(nv, 0.0f32)?;
     for c in &tags.corners {
         if let Some(s) = vsharp.get_mut(c.vertex as usize) {
             *s = sanitize(c.sharpness);
         }
     }
-    let mut hole = vec![false; faces.len()];
+    let mut hole = mem::filled(faces.len(), false)?;
     for &f in &tags.holes {
         if let Some(h) = hole.get_mut(f as usize) {
             *h = true;
         }
     }
-    let point = (0..nv as u32).collect();
-    let mut level = Level::new(&faces, point, vsharp, hole, |a, b| {
-        sharp.get(&(a, b)).copied().unwrap_or(0.0)
-    });
+    let point = mem::collect(0..nv as u32)?;
+    let mut level = Level::new(&faces, point, vsharp, hole, sharpness_of)?;
     let edges_found = sharp
-        .keys()
-        .filter(|&&(a, b)| {
+        .iter()
+        .filter(|&&((a, b), _)| {
             level
                 .vertex_edges(a as usize)
                 .iter()
@@ -86,40 +98,40 @@ pub fn tagged_base(mesh: &MeshInput) -> TaggedBase {
     if tags.boundary == BoundaryInterpolation::None {
         boundary_faces_to_holes(&mut level);
     }
-    level.sharpen_base(tags.boundary == BoundaryInterpolation::EdgeAndCorner);
+    level.sharpen_base(tags.boundary == BoundaryInterpolation::EdgeAndCorner)?;
     let smooth_triangles = tags.triangles == TriangleSubdivision::Smooth;
-    let clean = clean_faces(&level, tags.boundary, smooth_triangles);
-    TaggedBase {
+    let clean = clean_faces(&level, tags.boundary, smooth_triangles)?;
+    Ok(TaggedBase {
         level,
         clean,
         chaikin: tags.crease_method == CreaseMethod::Chaikin,
         smooth_triangles,
         creases_not_edges: sharp.len() - edges_found,
         boundary: tags.boundary,
-    }
+    })
 }
 
 /// The base level of a mesh without tags.
-pub fn plain_base(t: &Topology) -> TaggedBase {
-    let faces: Vec<&[u32]> = (0..t.num_faces()).map(|f| t.face(f)).collect();
-    let point = (0..t.num_vertices() as u32).collect();
+pub fn plain_base(t: &Topology) -> Result<TaggedBase, OutOfMemory> {
+    let faces: Vec<&[u32]> = mem::collect((0..t.num_faces()).map(|f| t.face(f)))?;
+    let point = mem::collect(0..t.num_vertices() as u32)?;
     let mut level = Level::new(
         &faces,
         point,
-        vec![0.0; t.num_vertices()],
-        vec![false; faces.len()],
+        mem::filled(t.num_vertices(), 0.0)?,
+        mem::filled(faces.len(), false)?,
         |_, _| 0.0,
-    );
-    level.sharpen_base(true);
-    let clean = vec![true; faces.len()];
-    TaggedBase {
+    )?;
+    level.sharpen_base(true)?;
+    let clean = mem::filled(faces.len(), true)?;
+    Ok(TaggedBase {
         level,
         clean,
         chaikin: false,
         smooth_triangles: false,
         creases_not_edges: 0,
         boundary: BoundaryInterpolation::EdgeAndCorner,
-    }
+    })
 }
 
 /// The level a whole-mesh step makes of `parent`'s level
@@ -137,23 +149,24 @@ pub fn stepped_base(
     face_parent: &[u32],
     vertex_sharpness: Vec<f32>,
     sharp: impl FnMut(u32, u32) -> f32,
-) -> TaggedBase {
-    let faces: Vec<&[u32]> = faces.iter().map(|f| &f[..]).collect();
-    let point = (0..vertex_sharpness.len() as u32).collect();
-    let hole = face_parent
-        .iter()
-        .map(|&f| parent.level.hole.get(f as usize).copied().unwrap_or(false))
-        .collect();
-    let level = Level::new(&faces, point, vertex_sharpness, hole, sharp);
-    let clean = clean_faces(&level, parent.boundary, parent.smooth_triangles);
-    TaggedBase {
+) -> Result<TaggedBase, OutOfMemory> {
+    let faces: Vec<&[u32]> = mem::collect(faces.iter().map(|f| &f[..]))?;
+    let point = mem::collect(0..vertex_sharpness.len() as u32)?;
+    let hole = mem::collect(
+        face_parent
+            .iter()
+            .map(|&f| parent.level.hole.get(f as usize).copied().unwrap_or(false)),
+    )?;
+    let level = Level::new(&faces, point, vertex_sharpness, hole, sharp)?;
+    let clean = clean_faces(&level, parent.boundary, parent.smooth_triangles)?;
+    Ok(TaggedBase {
         level,
         clean,
         chaikin: parent.chaikin,
         smooth_triangles: parent.smooth_triangles,
         creases_not_edges: parent.creases_not_edges,
         boundary: parent.boundary,
-    }
+    })
 }
 
 /// Negative and NaN sharpness are smooth.
@@ -168,23 +181,18 @@ fn sanitize(s: f32) -> f32 {
 /// `VTX_BOUNDARY_NONE`: every face at a vertex that has a boundary edge not
 /// made infinitely sharp by a tag is a hole.
 fn boundary_faces_to_holes(level: &mut Level) {
-    let mut holes = Vec::new();
     for v in 0..level.num_vertices() {
         let open = level.vertex_edges(v).iter().any(|&e| {
             level.edge_corners(e as usize).len() == 1
                 && !is_infinite(level.edge_sharpness[e as usize])
         });
         if open {
-            holes.extend(
-                level
-                    .vertex_corners(v)
-                    .iter()
-                    .map(|&c| level.corner_face[c as usize]),
-            );
+            // (Whether a vertex is open does not depend on holes.)
+            for k in 0..level.vertex_corners(v).len() {
+                let f = level.corner_face[level.vertex_corners(v)[k] as usize];
+                level.hole[f as usize] = true;
+            }
         }
-    }
-    for f in holes {
-        level.hole[f as usize] = true;
     }
 }
 
@@ -196,33 +204,31 @@ fn clean_faces(
     level: &Level,
     boundary: BoundaryInterpolation,
     smooth_triangles: bool,
-) -> Vec<bool> {
-    let vertex_clean: Vec<bool> = (0..level.num_vertices())
-        .map(|v| {
-            let edges = level.vertex_edges(v);
-            let corner = level.vertex_corners(v).len() == 1 && edges.len() == 2;
-            let vs = level.vertex_sharpness[v];
-            let vertex_ok = if corner {
-                boundary == BoundaryInterpolation::EdgeAndCorner
-            } else {
-                vs == 0.0
-            };
-            let triangle_free = !smooth_triangles
-                || level
-                    .vertex_corners(v)
-                    .iter()
-                    .all(|&c| level.face(level.corner_face[c as usize] as usize).len() != 3);
-            vertex_ok
-                && triangle_free
-                && edges.iter().all(|&e| {
-                    let e = e as usize;
-                    level.edge_sharpness[e] == 0.0
-                        || (level.edge_corners(e).len() == 1
-                            && is_infinite(level.edge_sharpness[e]))
-                })
-        })
-        .collect();
-    (0..level.num_faces())
-        .map(|f| !level.hole[f] && level.face(f).iter().all(|&v| vertex_clean[v as usize]))
-        .collect()
+) -> Result<Vec<bool>, OutOfMemory> {
+    let vertex_clean: Vec<bool> = mem::collect((0..level.num_vertices()).map(|v| {
+        let edges = level.vertex_edges(v);
+        let corner = level.vertex_corners(v).len() == 1 && edges.len() == 2;
+        let vs = level.vertex_sharpness[v];
+        let vertex_ok = if corner {
+            boundary == BoundaryInterpolation::EdgeAndCorner
+        } else {
+            vs == 0.0
+        };
+        let triangle_free = !smooth_triangles
+            || level
+                .vertex_corners(v)
+                .iter()
+                .all(|&c| level.face(level.corner_face[c as usize] as usize).len() != 3);
+        vertex_ok
+            && triangle_free
+            && edges.iter().all(|&e| {
+                let e = e as usize;
+                level.edge_sharpness[e] == 0.0
+                    || (level.edge_corners(e).len() == 1 && is_infinite(level.edge_sharpness[e]))
+            })
+    }))?;
+    mem::collect(
+        (0..level.num_faces())
+            .map(|f| !level.hole[f] && level.face(f).iter().all(|&v| vertex_clean[v as usize])),
+    )
 }

@@ -10,7 +10,7 @@
 //! regularity; [`crate::adaptive`] keeps to those.
 
 use super::crease::{is_semi_sharp, is_sharp, vertex_rule, Rule, INFINITE};
-use alloc::vec;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 use hashbrown::HashMap;
 
@@ -93,25 +93,26 @@ impl Level {
     /// running it twice), which makes a new edge, both then non-manifold;
     /// an edge already with two faces, or with one face running it the same
     /// way, becomes non-manifold; every degenerate edge (`a = b`) is a new,
-    /// non-manifold edge.
+    /// non-manifold edge. Every buffer is reserved fallibly
+    /// ([`crate::mem`]).
     pub fn new(
         faces: &[&[u32]],
         point: Vec<u32>,
         vertex_sharpness: Vec<f32>,
         hole: Vec<bool>,
         mut sharp: impl FnMut(u32, u32) -> f32,
-    ) -> Level {
-        let mut face_start = Vec::with_capacity(faces.len() + 1);
-        let mut corner_vertex = Vec::new();
-        let mut corner_face = Vec::new();
+    ) -> Result<Level, OutOfMemory> {
+        let nc: usize = faces.iter().map(|f| f.len()).sum();
+        let mut face_start = mem::with_capacity(faces.len() + 1)?;
+        let mut corner_vertex = mem::with_capacity(nc)?;
+        let mut corner_face = mem::with_capacity(nc)?;
         face_start.push(0);
         for (f, vs) in faces.iter().enumerate() {
             corner_vertex.extend_from_slice(vs);
             corner_face.extend(core::iter::repeat_n(f as u32, vs.len()));
             face_start.push(corner_vertex.len() as u32);
         }
-        let nc = corner_vertex.len();
-        let mut corner_edge = vec![0u32; nc];
+        let mut corner_edge = mem::filled(nc, 0u32)?;
         let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
         let mut nonmanifold: Vec<bool> = Vec::new();
         // Per edge: its face count and last face.
@@ -119,7 +120,8 @@ impl Level {
         let mut last_face: Vec<u32> = Vec::new();
         // The first edge made between two vertices, and how many.
         // (A closed mesh has an edge per two corners.)
-        let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(nc / 2);
+        let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
+        mem::reserve_map(&mut first, nc / 2)?;
         let mut instance: Vec<u32> = Vec::new();
         for (f, vs) in faces.iter().enumerate() {
             let f = f as u32;
@@ -142,26 +144,31 @@ impl Level {
                         }
                     }
                 }
-                let e = found.unwrap_or_else(|| {
-                    edge_vertices.push([a, b]);
-                    nonmanifold.push(new_nonmanifold);
-                    face_count.push(0);
-                    last_face.push(f);
-                    let e = edge_vertices.len() - 1;
-                    let made = first.entry((a.min(b), a.max(b))).or_insert((e as u32, 0));
-                    instance.push(made.1);
-                    made.1 += 1;
-                    e
-                });
+                let e = match found {
+                    Some(e) => e,
+                    None => {
+                        mem::push(&mut edge_vertices, [a, b])?;
+                        mem::push(&mut nonmanifold, new_nonmanifold)?;
+                        mem::push(&mut face_count, 0)?;
+                        mem::push(&mut last_face, f)?;
+                        let e = edge_vertices.len() - 1;
+                        mem::reserve_map(&mut first, 1)?;
+                        let made = first.entry((a.min(b), a.max(b))).or_insert((e as u32, 0));
+                        mem::push(&mut instance, made.1)?;
+                        made.1 += 1;
+                        e
+                    }
+                };
                 face_count[e] += 1;
                 last_face[e] = f;
                 corner_edge[base + i] = e as u32;
             }
         }
-        let edge_sharpness = edge_vertices
-            .iter()
-            .map(|&[a, b]| sharp(a.min(b), a.max(b)))
-            .collect();
+        let edge_sharpness = mem::collect(
+            edge_vertices
+                .iter()
+                .map(|&[a, b]| sharp(a.min(b), a.max(b))),
+        )?;
         Level::from_parts(
             Faces {
                 face_start,
@@ -182,14 +189,15 @@ impl Level {
     }
 
     /// A level from its faces and edges as they are (a refined level, whose
-    /// edges its parent's make), with the incidence derived from them.
+    /// edges its parent's make), with the incidence derived from them
+    /// (reserved fallibly).
     pub fn from_parts(
         faces: Faces,
         edges: Edges,
         point: Vec<u32>,
         vertex_sharpness: Vec<f32>,
         hole: Vec<bool>,
-    ) -> Level {
+    ) -> Result<Level, OutOfMemory> {
         let nv = point.len();
         let ne = edges.vertices.len();
         let (edge_corner_start, edge_corners) = csr(
@@ -199,7 +207,7 @@ impl Level {
                 .enumerate()
                 .map(|(c, &e)| (e, c as u32)),
             ne,
-        );
+        )?;
         let (vertex_corner_start, vertex_corners) = csr(
             faces
                 .corner_vertex
@@ -207,7 +215,7 @@ impl Level {
                 .enumerate()
                 .map(|(c, &v)| (v, c as u32)),
             nv,
-        );
+        )?;
         // Each edge at each of its ends: a degenerate edge twice, as
         // OpenSubdiv lists it.
         let (vertex_edge_start, vertex_edges) = csr(
@@ -217,8 +225,8 @@ impl Level {
                 .enumerate()
                 .flat_map(|(e, &[a, b])| [(a, e as u32), (b, e as u32)]),
             nv,
-        );
-        Level {
+        )?;
+        Ok(Level {
             face_start: faces.face_start,
             corner_vertex: faces.corner_vertex,
             corner_edge: faces.corner_edge,
@@ -230,7 +238,7 @@ impl Level {
             edge_sharpness: edges.sharpness,
             edge_nonmanifold: edges.nonmanifold,
             edge_instance: if edges.instance.is_empty() {
-                vec![0; ne]
+                mem::filled(ne, 0)?
             } else {
                 edges.instance
             },
@@ -240,30 +248,35 @@ impl Level {
             vertex_corners,
             vertex_edge_start,
             vertex_edges,
-        }
+        })
     }
 
     /// Number of faces.
+    #[inline]
     pub fn num_faces(&self) -> usize {
         self.face_start.len() - 1
     }
 
     /// Number of vertices.
+    #[inline]
     pub fn num_vertices(&self) -> usize {
         self.point.len()
     }
 
     /// Face `f`'s corners.
+    #[inline]
     pub fn face_corners(&self, f: usize) -> core::ops::Range<u32> {
         self.face_start[f]..self.face_start[f + 1]
     }
 
     /// Face `f`'s vertices.
+    #[inline]
     pub fn face(&self, f: usize) -> &[u32] {
         &self.corner_vertex[self.face_start[f] as usize..self.face_start[f + 1] as usize]
     }
 
     /// The next corner of the same face.
+    #[inline]
     pub fn next(&self, c: Corner) -> Corner {
         let f = self.corner_face[c as usize] as usize;
         if c + 1 == self.face_start[f + 1] {
@@ -274,6 +287,7 @@ impl Level {
     }
 
     /// The previous corner of the same face.
+    #[inline]
     pub fn prev(&self, c: Corner) -> Corner {
         let f = self.corner_face[c as usize] as usize;
         if c == self.face_start[f] {
@@ -284,6 +298,7 @@ impl Level {
     }
 
     /// Corners at vertex `v`.
+    #[inline]
     pub fn vertex_corners(&self, v: usize) -> &[Corner] {
         let (a, b) = (
             self.vertex_corner_start[v] as usize,
@@ -293,6 +308,7 @@ impl Level {
     }
 
     /// Edges at vertex `v`.
+    #[inline]
     pub fn vertex_edges(&self, v: usize) -> &[u32] {
         let (a, b) = (
             self.vertex_edge_start[v] as usize,
@@ -302,6 +318,7 @@ impl Level {
     }
 
     /// Corners whose edge is `e`.
+    #[inline]
     pub fn edge_corners(&self, e: usize) -> &[Corner] {
         let (a, b) = (
             self.edge_corner_start[e] as usize,
@@ -311,6 +328,7 @@ impl Level {
     }
 
     /// The other end of edge `e` from `v`.
+    #[inline]
     pub fn other_end(&self, e: usize, v: u32) -> u32 {
         let [a, b] = self.edge_vertices[e];
         if a == v {
@@ -346,6 +364,7 @@ impl Level {
 
     /// Across edge `corner_edge[c]` from corner `c`'s face: the corner of the
     /// other face at the same edge (`None` unless the edge is manifold).
+    #[inline]
     pub fn across(&self, c: Corner) -> Option<Corner> {
         let e = self.corner_edge[c as usize] as usize;
         if !self.edge_is_manifold(e) {
@@ -427,14 +446,14 @@ impl Level {
     /// faces and edges [`Self::orders_around`] cannot order) infinitely sharp
     /// unless it lies on an interior non-manifold crease (two non-manifold
     /// edges, no boundary edge, more faces than edges).
-    pub fn sharpen_base(&mut self, sharpen_corners: bool) {
+    pub fn sharpen_base(&mut self, sharpen_corners: bool) -> Result<(), OutOfMemory> {
         let ne = self.edge_vertices.len();
         for e in 0..ne {
             if self.edge_corners(e).len() < 2 || self.edge_nonmanifold[e] {
                 self.edge_sharpness[e] = INFINITE;
             }
         }
-        let mut nonmanifold = vec![false; self.num_vertices()];
+        let mut nonmanifold = mem::filled(self.num_vertices(), false)?;
         for e in (0..ne).filter(|&e| self.edge_nonmanifold[e]) {
             for v in self.edge_vertices[e] {
                 nonmanifold[v as usize] = true;
@@ -460,6 +479,7 @@ impl Level {
                 self.vertex_sharpness[v] = INFINITE;
             }
         }
+        Ok(())
     }
 
     /// Whether the faces and edges of vertex `v` order into one
@@ -532,9 +552,13 @@ impl Level {
 
 /// Compressed rows of `(key, item)` pairs over keys `0..n`: `(start, items)`,
 /// the items of key `k` at `items[start[k]..start[k + 1]]` in the pairs'
-/// order. Two passes over the pairs, no intermediate list.
-fn csr(pairs: impl Iterator<Item = (u32, u32)> + Clone, n: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut start = vec![0u32; n + 1];
+/// order. Two passes over the pairs, no intermediate list; reserved
+/// fallibly.
+fn csr(
+    pairs: impl Iterator<Item = (u32, u32)> + Clone,
+    n: usize,
+) -> Result<(Vec<u32>, Vec<u32>), OutOfMemory> {
+    let mut start = mem::filled(n + 1, 0u32)?;
     let mut len = 0usize;
     for (k, _) in pairs.clone() {
         start[k as usize + 1] += 1;
@@ -543,11 +567,11 @@ fn csr(pairs: impl Iterator<Item = (u32, u32)> + Clone, n: usize) -> (Vec<u32>, 
     for i in 0..n {
         start[i + 1] += start[i];
     }
-    let mut fill = start.clone();
-    let mut out = vec![0u32; len];
+    let mut fill = mem::to_vec(&start)?;
+    let mut out = mem::filled(len, 0u32)?;
     for (k, x) in pairs {
         out[fill[k as usize] as usize] = x;
         fill[k as usize] += 1;
     }
-    (start, out)
+    Ok((start, out))
 }

@@ -28,7 +28,7 @@ pub mod regular;
 pub mod subdivide;
 
 use crate::chart::{Affine, FaceChart};
-use alloc::collections::BTreeMap;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec;
 use alloc::vec::Vec;
 use cnet::level_cnet;
@@ -154,13 +154,17 @@ pub struct AdaptiveOptions {
 }
 
 /// Covers `roots` (faces of `base` with where they lie in the input).
-/// Points are numbered from `first_point` on.
+/// Points are numbered from `first_point` on. Every buffer whose size
+/// depends on the mesh (levels, points and their rows, patches, holes,
+/// caps, the edge sets) is reserved fallibly ([`crate::mem`]); what is
+/// allocated as it is (a vertex's fan, a cap's c-net, a row being built)
+/// is of the size of one vertex's neighbourhood.
 pub fn cover(
     base: &Level,
     roots: &[(u32, FaceChart)],
     options: AdaptiveOptions,
     first_point: u32,
-) -> Adaptive {
+) -> Result<Adaptive, OutOfMemory> {
     let mut out = Adaptive {
         patches: Vec::new(),
         caps: Vec::new(),
@@ -175,30 +179,29 @@ pub fn cover(
     // Level by level: the faces of a level that need refinement are refined
     // together, inside one child level of the faces around their corners
     // (each face once however many of them it borders).
-    let mut active: Vec<Active> = roots
-        .iter()
-        .map(|&(f, chart)| Active {
-            face: f,
-            chart,
-            may_close: false,
-        })
-        .collect();
+    let mut active: Vec<Active> = mem::collect(roots.iter().map(|&(f, chart)| Active {
+        face: f,
+        chart,
+        may_close: false,
+    }))?;
     let mut child_level: Level;
     let mut m = base;
     let mut level = 0;
     while !active.is_empty() {
         // The faces to refine, with their irregular corners.
-        let refined: Vec<(Active, u32)> = active
-            .into_iter()
-            .filter_map(|a| Some((a.clone(), visit(m, &a, level, options, &mut out)?)))
-            .collect();
+        let mut refined: Vec<(Active, u32)> = mem::with_capacity(active.len())?;
+        for a in active {
+            if let Some(bits) = visit(m, &a, level, options, &mut out)? {
+                refined.push((a, bits));
+            }
+        }
         if refined.is_empty() {
             break;
         }
         // The faces around the refined faces' corners, each once, and each
         // one's place in that list.
         let mut ring: Vec<u32> = Vec::new();
-        let mut place = vec![NONE; m.num_faces()];
+        let mut place = mem::filled(m.num_faces(), NONE)?;
         for (a, _) in &refined {
             for c in m.face_corners(a.face as usize) {
                 let v = m.corner_vertex[c as usize] as usize;
@@ -206,13 +209,13 @@ pub fn cover(
                     let g = m.corner_face[k as usize];
                     if place[g as usize] == NONE {
                         place[g as usize] = ring.len() as u32;
-                        ring.push(g);
+                        mem::push(&mut ring, g)?;
                     }
                 }
             }
         }
-        let child = subdivide(m, &ring, options.rules, &mut out.points);
-        active = Vec::with_capacity(4 * refined.len());
+        let child = subdivide(m, &ring, options.rules, &mut out.points)?;
+        active = mem::with_capacity(4 * refined.len())?;
         for (a, irregular) in &refined {
             let f = a.face as usize;
             let at = place[f] as usize;
@@ -223,6 +226,7 @@ pub fn cover(
             let may_close = irregular.count_ones() <= 1;
             let n = m.face(f).len();
             let first = child.first[at];
+            mem::reserve(&mut active, n)?;
             active.extend((0..n).map(|k| Active {
                 face: first + k as u32,
                 chart: a.chart.child(k, n),
@@ -237,16 +241,15 @@ pub fn cover(
     // parents all have the centre's parent as an irregular corner, and no
     // parent is a last hole above the caps' deepest level); a cap that
     // missed one would leave its faces bare, so they are reported.
-    let (complete, partial): (Vec<_>, Vec<_>) =
-        out.caps.drain(..).partition(AdaptiveCap::is_complete);
-    out.caps = complete;
-    out.unresolved_faces.extend(
-        partial
-            .iter()
-            .flat_map(|c| c.sectors.iter().flatten().map(|s| s.face)),
-    );
-    mark_neighbours(&mut out);
-    out
+    // (In place: the partial caps' faces are listed, then the caps go.)
+    for cap in out.caps.iter().filter(|c| !c.is_complete()) {
+        for s in cap.sectors.iter().flatten() {
+            mem::push(&mut out.unresolved_faces, s.face)?;
+        }
+    }
+    out.caps.retain(AdaptiveCap::is_complete);
+    mark_neighbours(&mut out)?;
+    Ok(out)
 }
 
 /// If face `f` at `level` is a sector of a cap: records its chart there
@@ -259,7 +262,7 @@ fn cap_sector(
     (bits, semi): (u32, bool),
     options: AdaptiveOptions,
     out: &mut Adaptive,
-) -> bool {
+) -> Result<bool, OutOfMemory> {
     // Above the first level whose faces may be last holes, so that every
     // face around the centre is reached (see `cover`); level 0 is the fast
     // path's.
@@ -268,10 +271,10 @@ fn cap_sector(
         || level > options.depth.max(MIN_HOLE_LEVEL)
         || m.face(f).len() != 4
     {
-        return false;
+        return Ok(false);
     }
     if semi || bits.count_ones() != 1 {
-        return false;
+        return Ok(false);
     }
     let k = bits.trailing_zeros() as usize;
     let c = m.face_start[f] + k as u32;
@@ -279,33 +282,40 @@ fn cap_sector(
     let at = match out.cap_at.get(&centre) {
         Some(&at) => at,
         None => {
-            let at = level_cnet(m, c).map(|net| {
-                out.caps.push(AdaptiveCap {
-                    center: centre,
-                    level,
-                    sectors: vec![None; net.valence],
-                    nodes: net.nodes,
-                    faces: net.faces,
-                });
-                out.caps.len() - 1
-            });
+            let at = match level_cnet(m, c) {
+                Some(net) => {
+                    mem::push(
+                        &mut out.caps,
+                        AdaptiveCap {
+                            center: centre,
+                            level,
+                            sectors: vec![None; net.valence],
+                            nodes: net.nodes,
+                            faces: net.faces,
+                        },
+                    )?;
+                    Some(out.caps.len() - 1)
+                }
+                None => None,
+            };
+            mem::reserve_map(&mut out.cap_at, 1)?;
             out.cap_at.insert(centre, at);
             at
         }
     };
     let Some(cap) = at.map(|i| &mut out.caps[i]) else {
-        return false;
+        return Ok(false);
     };
     let diagonal = m.point[m.corner_vertex[m.next(m.next(c)) as usize] as usize];
     let Some(j) = cap.faces.iter().position(|q| q[2] == diagonal) else {
-        return false;
+        return Ok(false);
     };
     cap.sectors[j] = Some(FaceChart {
         face: chart.face,
         corner: chart.corner,
         map: chart.map.compose(&Affine::rotation(k)),
     });
-    true
+    Ok(true)
 }
 
 /// Irregular corners of face `f` (bit per corner) and whether a semi-sharp
@@ -363,15 +373,15 @@ fn visit(
     level: u32,
     options: AdaptiveOptions,
     out: &mut Adaptive,
-) -> Option<u32> {
+) -> Result<Option<u32>, OutOfMemory> {
     let (f, chart) = (a.face as usize, a.chart);
     if m.hole[f] {
-        return None;
+        return Ok(None);
     }
-    if let Some(gather) = regular_grid(m, f, &mut out.points) {
+    if let Some(gather) = regular_grid(m, f, &mut out.points)? {
         let first = m.face_start[f] as usize;
         let corners = core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]);
-        out.patches.push(AdaptivePatch {
+        let patch = AdaptivePatch {
             gather,
             chart,
             level,
@@ -379,31 +389,33 @@ fn visit(
             hole: 0,
             hole_point: NONE,
             finer: 0,
-        });
-        return None;
+        };
+        mem::push(&mut out.patches, patch)?;
+        return Ok(None);
     }
     let irregular = irregular_corners(m, f);
-    if cap_sector(m, f, level, chart, irregular, options, out) {
-        return None;
+    if cap_sector(m, f, level, chart, irregular, options, out)? {
+        return Ok(None);
     }
     if let Some(v) = final_hole(m, f, level, irregular, options).filter(|_| a.may_close) {
-        if let Some(point) = limit_point(m, v, &mut out.points) {
+        if let Some(point) = limit_point(m, v, &mut out.points)? {
             let first = m.face_start[f] as usize;
-            out.holes.push(LastHole {
+            let hole = LastHole {
                 chart,
                 corners: core::array::from_fn(|k| m.point[m.corner_vertex[first + k] as usize]),
                 vertex: m.point[v],
                 level,
                 point,
-            });
-            return None;
+            };
+            mem::push(&mut out.holes, hole)?;
+            return Ok(None);
         }
     }
     if level >= options.depth.max(MIN_HOLE_LEVEL) + EXTRA_LEVELS {
-        out.unresolved_faces.push(chart.face);
-        return None;
+        mem::push(&mut out.unresolved_faces, chart.face)?;
+        return Ok(None);
     }
-    Some(irregular.0)
+    Ok(Some(irregular.0))
 }
 
 /// Sets [`AdaptivePatch::finer`] and [`AdaptivePatch::hole`] from the
@@ -413,7 +425,7 @@ fn visit(
 /// edge; an edge of a last hole, or a piece of one at a finer level (where
 /// the faces around an irregular vertex stop at different levels, as
 /// semi-sharp features and crowded corners make them), borders that hole.
-fn mark_neighbours(out: &mut Adaptive) {
+fn mark_neighbours(out: &mut Adaptive) -> Result<(), OutOfMemory> {
     let key = |a: u32, b: u32| (a.min(b), a.max(b));
     // Edge → (vertex at the coarsest level its holes have, limit point).
     let mut hole_edges: HashMap<(u32, u32), usize> = HashMap::new();
@@ -422,6 +434,7 @@ fn mark_neighbours(out: &mut Adaptive) {
             // The edge and its pieces at every finer level made.
             let mut stack = vec![(h.corners[k], h.corners[(k + 1) % 4])];
             while let Some((a, b)) = stack.pop() {
+                mem::reserve_map(&mut hole_edges, 1)?;
                 hole_edges.insert(key(a, b), i);
                 if let Some((x, y)) = halves(&out.points, a, b) {
                     stack.push(x);
@@ -434,16 +447,18 @@ fn mark_neighbours(out: &mut Adaptive) {
     // masks of levels differ where the rule is not exact (a dart uses the
     // smooth mask, as OpenSubdiv's does): every hole of a vertex takes the
     // point of its coarsest hole, so their fans meet.
-    let mut order: Vec<usize> = (0..out.holes.len()).collect();
+    let mut order: Vec<usize> = mem::collect(0..out.holes.len())?;
     order.sort_by_key(|&i| out.holes[i].level);
-    let mut point_of: BTreeMap<u32, (u32, u32)> = BTreeMap::new();
+    let mut point_of: HashMap<u32, (u32, u32)> = HashMap::new();
     for &i in &order {
         let (vertex, point) = (out.holes[i].vertex, out.holes[i].point);
+        mem::reserve_map(&mut point_of, 1)?;
         let root = *point_of.entry(vertex).or_insert((vertex, point));
         let mut v = vertex;
         for _ in 0..=EXTRA_LEVELS + 2 {
             match out.points.get(&Key::Vertex(v)) {
                 Some(c) => {
+                    mem::reserve_map(&mut point_of, 1)?;
                     point_of.entry(c).or_insert(root);
                     v = c;
                 }
@@ -472,13 +487,14 @@ fn mark_neighbours(out: &mut Adaptive) {
         }
     }
     out.hole_conflicts = conflicts;
-    let edges = out.collect_edges();
-    let cap_edges: HashSet<(u32, u32)> = out
-        .caps
-        .iter()
-        .flat_map(|c| &c.faces)
-        .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4])))
-        .collect();
+    let edges = out.collect_edges()?;
+    let mut cap_edges: HashSet<(u32, u32)> = HashSet::new();
+    for q in out.caps.iter().flat_map(|c| &c.faces) {
+        for k in 0..4 {
+            mem::reserve_set(&mut cap_edges, 1)?;
+            cap_edges.insert(key(q[k], q[(k + 1) % 4]));
+        }
+    }
     let mut jumps = 0;
     for p in &mut out.patches {
         for k in 0..4 {
@@ -498,25 +514,27 @@ fn mark_neighbours(out: &mut Adaptive) {
     }
     out.level_jumps = jumps;
     out.edges = edges;
+    Ok(())
 }
 
 impl Adaptive {
     /// The edges of the patches and of the caps' faces, by their end points
     /// (smaller first).
-    fn collect_edges(&self) -> HashSet<(u32, u32)> {
+    fn collect_edges(&self) -> Result<HashSet<(u32, u32)>, OutOfMemory> {
         let key = |a: u32, b: u32| (a.min(b), a.max(b));
         let quads = self.patches.len() + self.caps.iter().map(|c| c.faces.len()).sum::<usize>();
-        // Most edges are two quads' (a flat-mapped collect would grow the
-        // set step by step).
-        let mut edges = HashSet::with_capacity(2 * quads);
-        edges.extend(
-            self.patches
-                .iter()
-                .map(|p| p.corners)
-                .chain(self.caps.iter().flat_map(|c| c.faces.iter().copied()))
-                .flat_map(|q| (0..4).map(move |k| key(q[k], q[(k + 1) % 4]))),
-        );
-        edges
+        // Most edges are two quads' (reserved for those; a collect would
+        // grow the set step by step), the rest reserved as they come.
+        let mut edges = HashSet::new();
+        mem::reserve_set(&mut edges, 2 * quads)?;
+        let faces = self.patches.iter().map(|p| p.corners);
+        for q in faces.chain(self.caps.iter().flat_map(|c| c.faces.iter().copied())) {
+            for k in 0..4 {
+                mem::reserve_set(&mut edges, 1)?;
+                edges.insert(key(q[k], q[(k + 1) % 4]));
+            }
+        }
+        Ok(edges)
     }
 }
 

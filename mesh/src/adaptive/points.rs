@@ -6,6 +6,7 @@
 //! level and needs no name.
 
 use super::NONE;
+use crate::mem::{self, OutOfMemory};
 use crate::stencil::StencilTable;
 use alloc::vec::Vec;
 use hashbrown::hash_map::Entry;
@@ -93,11 +94,17 @@ impl Points {
     /// Room for `points` more points, `named` of them named, `entries`
     /// row entries in all, without growing the tables on the way (a
     /// refinement knows bounds: a point per face, and one vertex and one
-    /// edge child per corner of the faces it refines).
-    pub fn reserve(&mut self, points: usize, named: usize, entries: usize) {
-        self.keys.reserve(named);
-        self.parent.reserve(points);
-        self.rows.reserve(points, entries);
+    /// edge child per corner of the faces it refines). Fallible, as every
+    /// growth of the tables: an allocation the system refuses is an error.
+    pub fn reserve(
+        &mut self,
+        points: usize,
+        named: usize,
+        entries: usize,
+    ) -> Result<(), OutOfMemory> {
+        mem::reserve_map(&mut self.keys, named)?;
+        mem::reserve(&mut self.parent, points)?;
+        self.rows.try_reserve(points, entries)
     }
 
     /// The point named `key`, if it was made.
@@ -108,27 +115,37 @@ impl Points {
 
     /// A new point without a name (a face's child: made once), its row
     /// written by `build` into an empty row.
-    pub fn make(&mut self, build: impl FnOnce(&mut Row)) -> u32 {
+    #[inline]
+    pub fn make(&mut self, build: impl FnOnce(&mut Row)) -> Result<u32, OutOfMemory> {
         self.scratch.0.clear();
         build(&mut self.scratch);
+        room_for_one(&mut self.parent, &mut self.rows, self.scratch.0.len())?;
         self.parent.push(NONE);
-        self.base + self.rows.push_slice(&self.scratch.0)
+        Ok(self.base + self.rows.push_slice(&self.scratch.0))
     }
 
     /// The point named `key`, its row written by `build` into an empty row
     /// the first time.
-    pub fn get_or_make(&mut self, key: Key, build: impl FnOnce(&mut Row)) -> u32 {
+    pub fn get_or_make(
+        &mut self,
+        key: Key,
+        build: impl FnOnce(&mut Row),
+    ) -> Result<u32, OutOfMemory> {
+        // Room for a new name first: the look-up's slot is then filled
+        // without growing the table.
+        mem::reserve_map(&mut self.keys, 1)?;
         match self.keys.entry(key) {
-            Entry::Occupied(made) => *made.get(),
+            Entry::Occupied(made) => Ok(*made.get()),
             Entry::Vacant(slot) => {
                 self.scratch.0.clear();
                 build(&mut self.scratch);
+                room_for_one(&mut self.parent, &mut self.rows, self.scratch.0.len())?;
                 let p = self.base + self.rows.push_slice(&self.scratch.0);
                 self.parent.push(match key {
                     Key::Vertex(v) => v,
                     _ => NONE,
                 });
-                *slot.insert(p)
+                Ok(*slot.insert(p))
             }
         }
     }
@@ -145,4 +162,22 @@ impl Points {
         }
         Some(p)
     }
+}
+
+/// Room for one more point, of a row of `entries` entries, in `parent` and
+/// `rows` (no allocation when they have room: the check [`Vec::push`]
+/// makes).
+#[inline]
+fn room_for_one(
+    parent: &mut Vec<u32>,
+    rows: &mut StencilTable,
+    entries: usize,
+) -> Result<(), OutOfMemory> {
+    if parent.len() == parent.capacity() {
+        mem::reserve(parent, 1)?;
+    }
+    if rows.has_room(1, entries) {
+        return Ok(());
+    }
+    rows.try_reserve(1, entries)
 }

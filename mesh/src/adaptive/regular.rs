@@ -20,6 +20,7 @@
 use super::crease::{is_sharp, Rule};
 use super::level::{Corner, Level};
 use super::points::{Key, Points};
+use crate::mem::OutOfMemory;
 use alloc::vec::Vec;
 
 /// Grid position of face corner `k` in the 4×4 grid (`[i][j]`, `i` along the
@@ -80,15 +81,25 @@ fn sector_fits(m: &Level, c: Corner, rule: Rule, fan: &mut Vec<Corner>) -> bool 
 }
 
 /// The 16 control points of face `f` if it is regular: `[4·i + j]`, `i`
-/// along the face's edge 0 (corner 0 → 1), `j` along corner 0 → 3.
-pub fn regular_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16]> {
+/// along the face's edge 0 (corner 0 → 1), `j` along corner 0 → 3. The
+/// error is a refused allocation of a phantom point's row.
+pub fn regular_grid(
+    m: &Level,
+    f: usize,
+    points: &mut Points,
+) -> Result<Option<[u32; 16]>, OutOfMemory> {
     if m.face(f).len() != 4 {
-        return None;
+        return Ok(None);
     }
     if let Some(g) = smooth_interior_grid(m, f) {
-        return Some(g);
+        return Ok(Some(g));
     }
-    gathered_grid(m, f, points)
+    let mut refused = None;
+    let g = gathered_grid(m, f, points, &mut refused);
+    match refused {
+        Some(e) => Err(e),
+        None => Ok(g),
+    }
 }
 
 /// Outward direction of face side `k` (corner `k` → `k + 1`) in the grid.
@@ -156,8 +167,14 @@ pub fn smooth_interior_grid(m: &Level, f: usize) -> Option<[u32; 16]> {
 }
 
 /// [`regular_grid`] by gathering each corner's sector and mirroring across
-/// infinitely sharp sides: every regular face.
-fn gathered_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16]> {
+/// infinitely sharp sides: every regular face. A phantom point whose row
+/// cannot be allocated ends the gathering, its error in `refused`.
+fn gathered_grid(
+    m: &Level,
+    f: usize,
+    points: &mut Points,
+    refused: &mut Option<OutOfMemory>,
+) -> Option<[u32; 16]> {
     let mut g: [[Option<u32>; 4]; 4] = [[None; 4]; 4];
     let mut fan = Vec::with_capacity(8);
     let first = m.face_start[f];
@@ -198,34 +215,35 @@ fn gathered_grid(m: &Level, f: usize, points: &mut Points) -> Option<[u32; 16]> 
     let cut: [bool; 4] = core::array::from_fn(|k| {
         is_sharp(m.edge_sharpness[m.corner_edge[first as usize + k] as usize])
     });
-    let mut mirror = |near: u32, far: u32| -> u32 {
-        points.get_or_make(Key::Mirror(near, far), |row| {
+    let mut mirror = |near: u32, far: u32| -> Option<u32> {
+        let made = points.get_or_make(Key::Mirror(near, far), |row| {
             row.0.extend([(near, 2.0), (far, -1.0)]);
-        })
+        });
+        made.map_err(|e| *refused = Some(e)).ok()
     };
     // Edge rows first, then the corners of the grid across the cut side.
     #[allow(clippy::needless_range_loop)] // x indexes rows and columns alike
     for x in 1..3 {
         if cut[0] {
-            g[x][0] = Some(mirror(g[x][1]?, g[x][2]?));
+            g[x][0] = Some(mirror(g[x][1]?, g[x][2]?)?);
         }
         if cut[2] {
-            g[x][3] = Some(mirror(g[x][2]?, g[x][1]?));
+            g[x][3] = Some(mirror(g[x][2]?, g[x][1]?)?);
         }
         if cut[3] {
-            g[0][x] = Some(mirror(g[1][x]?, g[2][x]?));
+            g[0][x] = Some(mirror(g[1][x]?, g[2][x]?)?);
         }
         if cut[1] {
-            g[3][x] = Some(mirror(g[2][x]?, g[1][x]?));
+            g[3][x] = Some(mirror(g[2][x]?, g[1][x]?)?);
         }
     }
     for (i, j, side_j, side_i) in [(0, 0, 0, 3), (3, 0, 0, 1), (3, 3, 2, 1), (0, 3, 2, 3)] {
         let (jn, jf) = if j == 0 { (1, 2) } else { (2, 1) };
         let (in_, if_) = if i == 0 { (1, 2) } else { (2, 1) };
         if cut[side_j] {
-            g[i][j] = Some(mirror(g[i][jn]?, g[i][jf]?));
+            g[i][j] = Some(mirror(g[i][jn]?, g[i][jf]?)?);
         } else if cut[side_i] {
-            g[i][j] = Some(mirror(g[in_][j]?, g[if_][j]?));
+            g[i][j] = Some(mirror(g[in_][j]?, g[if_][j]?)?);
         }
     }
     let mut out = [0u32; 16];
@@ -300,14 +318,16 @@ mod tests {
         ];
         let (mut walked, mut gathered_only) = (0, 0);
         for mesh in &meshes {
-            let base = tagged_base(mesh).level;
+            let base = tagged_base(mesh).unwrap().level;
             let mut points = Points::new(base.num_vertices() as u32);
             let all: Vec<u32> = (0..base.num_faces() as u32).collect();
-            let child = subdivide(&base, &all, Rules::default(), &mut points).level;
+            let child = subdivide(&base, &all, Rules::default(), &mut points)
+                .unwrap()
+                .level;
             for m in [&base, &child] {
                 for f in 0..m.num_faces() {
                     let gathered = if m.face(f).len() == 4 {
-                        gathered_grid(m, f, &mut points)
+                        gathered_grid(m, f, &mut points, &mut None)
                     } else {
                         None
                     };

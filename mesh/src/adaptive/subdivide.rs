@@ -25,7 +25,7 @@ use super::crease::{child_edge_sharpness, decay, fractional_weight, is_sharp, ve
 use super::level::{Edges, Faces, Level};
 use super::points::{Key, Points, Row};
 use super::NONE;
-use alloc::vec;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 
 /// Adds `w ×` face `f`'s centroid to `row`.
@@ -56,43 +56,49 @@ pub struct Rules {
 }
 
 /// Refines `faces` of `m` (see the module doc for what `m` must hold).
-pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) -> Child {
+/// Every buffer is reserved fallibly, up front from the bounds below.
+pub fn subdivide(
+    m: &Level,
+    faces: &[u32],
+    rules: Rules,
+    points: &mut Points,
+) -> Result<Child, OutOfMemory> {
     let chaikin = rules.chaikin;
     // Children by parent index (NONE: not made yet).
-    let mut vchild = vec![NONE; m.num_vertices()];
-    let mut echild = vec![NONE; m.edge_vertices.len()];
+    let mut vchild = mem::filled(m.num_vertices(), NONE)?;
+    let mut echild = mem::filled(m.edge_vertices.len(), NONE)?;
     // Bounds: a child face per corner; a point per face, vertex and edge
     // (at most one of each per corner); two half edges per parent edge and
     // one edge inside the face per corner.
     let corners: usize = faces.iter().map(|&f| m.face(f as usize).len()).sum();
     let max_points = faces.len() + 2 * corners;
-    let mut point: Vec<u32> = Vec::with_capacity(max_points);
-    let mut vsharp: Vec<f32> = Vec::with_capacity(max_points);
+    let mut point: Vec<u32> = mem::with_capacity(max_points)?;
+    let mut vsharp: Vec<f32> = mem::with_capacity(max_points)?;
     let mut faces_out = Faces {
-        face_start: Vec::with_capacity(corners + 1),
-        corner_vertex: Vec::with_capacity(4 * corners),
-        corner_face: Vec::with_capacity(4 * corners),
-        corner_edge: Vec::with_capacity(4 * corners),
+        face_start: mem::with_capacity(corners + 1)?,
+        corner_vertex: mem::with_capacity(4 * corners)?,
+        corner_face: mem::with_capacity(4 * corners)?,
+        corner_edge: mem::with_capacity(4 * corners)?,
     };
     faces_out.face_start.push(0);
     // Face points of about 4 entries, edge and vertex points of about 6
     // and 9 (at valence 4), roughly a quarter and a half as many as
     // corners.
-    points.reserve(max_points, corners, 4 * faces.len() + 6 * corners);
+    points.reserve(max_points, corners, 4 * faces.len() + 6 * corners)?;
     let max_edges = 3 * corners;
     let mut edges_out = Edges {
-        vertices: Vec::with_capacity(max_edges),
-        sharpness: Vec::with_capacity(max_edges),
-        nonmanifold: Vec::with_capacity(max_edges),
+        vertices: mem::with_capacity(max_edges)?,
+        sharpness: mem::with_capacity(max_edges)?,
+        nonmanifold: mem::with_capacity(max_edges)?,
         instance: Vec::new(),
     };
     // Child edges by origin: per parent edge, the halves at its two ends;
     // per parent corner, the edge from the face point to the edge point of
     // the corner's edge.
-    let mut edge_child = vec![[NONE; 2]; m.edge_vertices.len()];
-    let mut face_child = vec![NONE; m.corner_vertex.len()];
-    let mut holes = Vec::with_capacity(corners);
-    let mut first = Vec::with_capacity(faces.len());
+    let mut edge_child = mem::filled(m.edge_vertices.len(), [NONE; 2])?;
+    let mut face_child = mem::filled(m.corner_vertex.len(), NONE)?;
+    let mut holes = mem::with_capacity(corners)?;
+    let mut first = mem::with_capacity(faces.len())?;
 
     let new_vertex = |p: u32, s: f32, point: &mut Vec<u32>, vsharp: &mut Vec<f32>| -> u32 {
         point.push(p);
@@ -108,12 +114,12 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
     for &f in faces {
         let f = f as usize;
         // Each face is given once: its point is new.
-        let p = face_point(m, f, points);
+        let p = face_point(m, f, points)?;
         let face_fc = new_vertex(p, 0.0, &mut point, &mut vsharp);
         for c in m.face_corners(f) {
             let v = m.corner_vertex[c as usize] as usize;
             if vchild[v] == NONE {
-                let p = vertex_point(m, v, chaikin, points);
+                let p = vertex_point(m, v, chaikin, points)?;
                 let s = decay(m.vertex_sharpness[v]);
                 vchild[v] = new_vertex(p, s, &mut point, &mut vsharp);
             }
@@ -121,7 +127,7 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
         for c in m.face_corners(f) {
             let e = m.corner_edge[c as usize] as usize;
             if echild[e] == NONE {
-                let p = edge_point(m, e, rules, points);
+                let p = edge_point(m, e, rules, points)?;
                 echild[e] = new_vertex(p, 0.0, &mut point, &mut vsharp);
             }
         }
@@ -183,8 +189,8 @@ pub fn subdivide(m: &Level, faces: &[u32], rules: Rules, points: &mut Points) ->
             holes.push(m.hole[f]);
         }
     }
-    let level = Level::from_parts(faces_out, edges_out, point, vsharp, holes);
-    Child { level, first }
+    let level = Level::from_parts(faces_out, edges_out, point, vsharp, holes)?;
+    Ok(Child { level, first })
 }
 
 /// Sharpness of the edges at `v`.
@@ -195,12 +201,17 @@ fn around(m: &Level, v: usize) -> impl Iterator<Item = f32> + '_ {
 }
 
 /// The face point of `f` (a new point: [`subdivide`] makes each face's once).
-pub fn face_point(m: &Level, f: usize, points: &mut Points) -> u32 {
+pub fn face_point(m: &Level, f: usize, points: &mut Points) -> Result<u32, OutOfMemory> {
     points.make(|row| add_centroid(m, f, 1.0, row))
 }
 
 /// The edge point of `e`.
-pub fn edge_point(m: &Level, e: usize, rules: Rules, points: &mut Points) -> u32 {
+pub fn edge_point(
+    m: &Level,
+    e: usize,
+    rules: Rules,
+    points: &mut Points,
+) -> Result<u32, OutOfMemory> {
     let chaikin = rules.chaikin;
     let [a, b] = m.edge_vertices[e];
     let (pa, pb) = (m.point[a as usize], m.point[b as usize]);
@@ -284,7 +295,12 @@ fn vertex_mask(m: &Level, v: usize, rule: Rule, sharp: &[bool], r: &mut Row) {
 }
 
 /// The vertex point of `v`.
-pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> u32 {
+pub fn vertex_point(
+    m: &Level,
+    v: usize,
+    chaikin: bool,
+    points: &mut Points,
+) -> Result<u32, OutOfMemory> {
     points.get_or_make(Key::Vertex(m.point[v]), |row| {
         let edges = m.vertex_edges(v);
         if m.vertex_sharpness[v] == 0.0
@@ -338,7 +354,7 @@ pub fn vertex_point(m: &Level, v: usize, chaikin: bool, points: &mut Points) -> 
 /// little from level to level (the adaptive holes of one vertex share one). `None` for a smooth vertex with a
 /// face that is not a quad (its limit mask needs face centroids; the
 /// refinement never stops there).
-pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
+pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Result<Option<u32>, OutOfMemory> {
     let rule = m.rule(v);
     let pv = m.point[v];
     let mut row = Row::new();
@@ -356,7 +372,7 @@ pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
             for &c in m.vertex_corners(v) {
                 let f = m.corner_face[c as usize] as usize;
                 if m.face(f).len() != 4 {
-                    return None;
+                    return Ok(None);
                 }
                 let opposite = m.next(m.next(c));
                 row.add(m.point[m.corner_vertex[opposite as usize] as usize], w);
@@ -380,5 +396,7 @@ pub fn limit_point(m: &Level, v: usize, points: &mut Points) -> Option<u32> {
         }
         Rule::Corner => row.add(pv, 1.0),
     }
-    Some(points.get_or_make(Key::Limit(pv), |made| *made = row))
+    points
+        .get_or_make(Key::Limit(pv), |made| *made = row)
+        .map(Some)
 }
