@@ -7,10 +7,12 @@
 //! reservation do not allocate again.
 //!
 //! The analysis (topology, whole-mesh steps, the adaptive refinement with
-//! its levels, points and patches, the plan) reserves this way; what it
-//! allocates as it is has the size of one vertex's neighbourhood (a fan, a
-//! stencil row being built, a cap's c-net). `tests/analysis_out_of_memory.rs`
-//! refuses each of its allocations of 4 KB or more in turn.
+//! its levels, points and patches, the plan) and the streaming weld
+//! ([`crate::tessellate::StreamTessellator`]) reserve this way; what they
+//! allocate as it is has the size of one vertex's neighbourhood (a fan, a
+//! stencil row being built, a cap's c-net) or of one patch's layout.
+//! `tests/out_of_memory.rs` refuses each of their allocations of 4 KB or
+//! more in turn.
 
 use alloc::vec::Vec;
 use core::fmt;

@@ -636,6 +636,12 @@ impl<R: Scalar> PatchWriter<'_, R> {
             }
             PatchWriter::Obj { mut tess, mut obj } => {
                 let s = tess.finish(&mut obj);
+                if let Some(e) = tess.refused() {
+                    return Err(std::io::Error::new(
+                        std::io::ErrorKind::OutOfMemory,
+                        e.message(),
+                    ));
+                }
                 obj_error(&mut obj)?;
                 let counts = counts_line(s.vertices, s.triangles, s.quads);
                 writeln!(obj.out.w, "# {counts}")

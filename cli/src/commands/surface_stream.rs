@@ -151,6 +151,9 @@ pub fn obj(
     let s = sink.tess.finish(sink.obj);
     let (tess_time, time) = (sink.time, sink.time + start.elapsed());
     let mut summary = result?;
+    if let Some(e) = sink.tess.refused() {
+        return Err(CliError::out_of_memory(name, e.bytes));
+    }
     if let Some(e) = obj.out.error.take() {
         return Err(io(e));
     }

@@ -270,14 +270,20 @@ pub fn tessellate_guided<R: Real, S: Real, P: Borrow<PatchRecord<R>>, G: Borrow<
     assemble(raw, rep)
 }
 
-/// Every patch's samples and faces, unwelded.
+/// Every patch's samples and faces, unwelded. (The collected tessellation
+/// returns no error: a refused allocation aborts, as a `Vec`'s growth does;
+/// [`StreamTessellator`] reports it instead.)
 fn sample_all<R: Real, P: Borrow<PatchRecord<R>>>(
     patches: impl IntoIterator<Item = (P, u32)>,
     grid: usize,
 ) -> sample::Raw<R> {
     let mut raw = sample::Raw::new(grid.max(1));
     for (p, tag) in patches {
-        raw.push(p.borrow(), tag);
+        if let Err(e) = raw.push(p.borrow(), tag) {
+            let layout = core::alloc::Layout::from_size_align(e.bytes, 1)
+                .unwrap_or(core::alloc::Layout::new::<u8>());
+            alloc::alloc::handle_alloc_error(layout);
+        }
     }
     raw
 }

@@ -7,6 +7,7 @@ use super::Face;
 use super::PatchGeometry;
 use crate::evaluate::PatchRecord;
 use crate::facevarying::PatchUv;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 use capdiv::{IsoCurve, Point3, Real, TensorPatch};
 
@@ -54,13 +55,18 @@ impl<R: Real> Raw<R> {
         }
     }
 
-    /// Samples and triangulates `p`, its faces tagged `tag`.
-    pub fn push(&mut self, p: &PatchRecord<R>, tag: u32) {
+    /// Samples and triangulates `p`, its faces tagged `tag`. The room for
+    /// them is reserved fallibly first: on an error nothing is pushed.
+    pub fn push(&mut self, p: &PatchRecord<R>, tag: u32) -> Result<(), OutOfMemory> {
         let sampling = Sampling::Uniform(self.grid);
         let split = sampling.split_edges(p.level, p.finer);
         let which = usize::from(split) << 4 | usize::from(p.hole & 0xf);
         let mut layout = core::mem::take(&mut self.layouts[which]);
         layout.set(&sampling, p);
+        if let Err(e) = self.reserve(&layout, p.uv.is_some()) {
+            self.layouts[which] = layout;
+            return Err(e);
+        }
         let start = self.positions.len();
         match &p.geometry {
             PatchGeometry::Cubic(g) => self.push_samples(g, p, &layout),
@@ -75,6 +81,21 @@ impl<R: Real> Raw<R> {
             self.push_uvs(uv, &layout, start);
         }
         self.layouts[which] = layout;
+        Ok(())
+    }
+
+    /// Room for `layout`'s samples and faces (and their UVs).
+    fn reserve(&mut self, layout: &PatchLayout, uvs: bool) -> Result<(), OutOfMemory> {
+        let (samples, faces) = (layout.samples.len(), layout.faces.len());
+        mem::reserve(&mut self.positions, samples)?;
+        mem::reserve(&mut self.normals, samples)?;
+        mem::reserve(&mut self.faces, faces)?;
+        mem::reserve(&mut self.tags, faces)?;
+        if uvs {
+            let more = (self.positions.len() + samples).saturating_sub(self.uvs.len());
+            mem::reserve(&mut self.uvs, more)?;
+        }
+        Ok(())
     }
 
     /// The positions and normals of `layout`'s samples of `g`, the lattice

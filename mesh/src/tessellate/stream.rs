@@ -63,6 +63,7 @@
 use super::sample::Raw;
 use super::{BadEdge, EdgeFault, Face};
 use crate::evaluate::{CapRecord, PatchRecord, SurfaceSink};
+use crate::mem::{self, OutOfMemory};
 use alloc::collections::VecDeque;
 use alloc::vec::Vec;
 use capdiv::{Point3, Real};
@@ -285,6 +286,8 @@ pub struct StreamTessellator<R> {
     edge_seq: u64,
     blame: Option<(u64, BadEdge)>,
     summary: StreamSummary,
+    /// The allocation refused, after which the stream takes no more.
+    refused: Option<OutOfMemory>,
 }
 
 impl<R: Real> StreamTessellator<R> {
@@ -327,7 +330,18 @@ impl<R: Real> StreamTessellator<R> {
                 peak_weld: 0,
                 peak_waiting: 0,
             },
+            refused: None,
         }
+    }
+
+    /// The allocation the system refused, if it refused one: the stream
+    /// then stopped taking patches (what was handed to the sink before is
+    /// a prefix of the output, and [`Self::finish`] hands over nothing
+    /// more). Every table whose size depends on the input (the weld
+    /// table, the waiting output, the open edges, a patch's samples) is
+    /// reserved fallibly before it grows.
+    pub fn refused(&self) -> Option<OutOfMemory> {
+        self.refused
     }
 
     /// Tessellates one patch, its faces tagged `tag`, and hands what is
@@ -340,12 +354,20 @@ impl<R: Real> StreamTessellator<R> {
     /// sample, which then makes a second vertex. The streaming weld carries
     /// positions and normals only: [`PatchRecord::uv`] is not used.
     ///
+    /// After a refused allocation ([`Self::refused`]) it does nothing.
+    ///
     /// # Panics
     ///
     /// If the vertices outnumber `u32::MAX`.
     pub fn push(&mut self, p: &PatchRecord<R>, tag: u32, sink: &mut dyn MeshSink<R>) {
+        if self.refused.is_some() {
+            return;
+        }
         if self.group != Some(p.cap) {
             self.end_group(sink);
+            if self.refused.is_some() {
+                return;
+            }
             self.group = Some(p.cap);
         }
         self.raw.positions.clear();
@@ -353,7 +375,11 @@ impl<R: Real> StreamTessellator<R> {
         self.raw.faces.clear();
         self.raw.tags.clear();
         self.raw.uvs.clear();
-        self.raw.push(p, tag);
+        // The room for the patch first (then nothing below grows).
+        if let Err(e) = self.raw.push(p, tag).and_then(|()| self.reserve_patch()) {
+            self.refused = Some(e);
+            return;
+        }
         self.raw.uvs.clear();
         self.classify(p, p.boundary);
         let count = self.raw.positions.len();
@@ -392,10 +418,50 @@ impl<R: Real> StreamTessellator<R> {
         self.flush(sink);
     }
 
+    /// Room for what the patch in `raw` can add: a slot, a cell, a pin, a
+    /// freed slot and a waiting vertex per sample, a waiting face and four
+    /// open edges and hole areas per face, and the per-sample lists. Within
+    /// it nothing grows while the patch is taken in. (Kept out of line: the
+    /// checks cost less than the code they would add to `push`.)
+    #[inline(never)]
+    fn reserve_patch(&mut self) -> Result<(), OutOfMemory> {
+        let (samples, faces) = (self.raw.positions.len(), self.raw.faces.len());
+        for list in [&mut self.local, &mut self.pins, &mut self.free] {
+            mem::reserve(list, samples)?;
+        }
+        mem::reserve(&mut self.turns, samples)?;
+        mem::reserve(&mut self.pin, samples)?;
+        mem::reserve(&mut self.interior, samples)?;
+        mem::reserve(&mut self.paired_here, samples)?;
+        mem::reserve(&mut self.slots, samples)?;
+        mem::reserve_map(&mut self.cells, samples)?;
+        mem::reserve_map(&mut self.areas, faces)?;
+        mem::reserve_map(&mut self.edges, 4 * faces)?;
+        self.reserve_queue(samples + faces)
+    }
+
+    /// Room for `more` waiting vertices and faces.
+    fn reserve_queue(&mut self, more: usize) -> Result<(), OutOfMemory> {
+        self.queue
+            .try_reserve(more)
+            .map_err(|_| OutOfMemory::of::<Waiting<R>>(self.queue.len().saturating_add(more)))
+    }
+
     /// Ends the current group: its holes' points and corners leave the
     /// table, their vertices get their normals, and what waited for them is
     /// handed over.
     pub fn end_group(&mut self, sink: &mut dyn MeshSink<R>) {
+        if self.refused.is_some() {
+            return;
+        }
+        if let Err(e) = self.try_end_group(sink) {
+            self.refused = Some(e);
+        }
+    }
+
+    /// [`Self::end_group`], the room for the slots it frees reserved first.
+    fn try_end_group(&mut self, sink: &mut dyn MeshSink<R>) -> Result<(), OutOfMemory> {
+        mem::reserve(&mut self.free, self.pins.len())?;
         let pins = core::mem::take(&mut self.pins);
         for &s in &pins {
             if self.slots[s as usize].live {
@@ -406,18 +472,26 @@ impl<R: Real> StreamTessellator<R> {
         self.pins = pins;
         self.pins.clear();
         self.flush(sink);
+        Ok(())
     }
 
     /// Ends the stream: every vertex still held gets its normal and is handed
     /// over with the faces waiting for it. Returns the counts.
     pub fn finish(&mut self, sink: &mut dyn MeshSink<R>) -> StreamSummary {
         self.end_group(sink);
-        for s in 0..self.slots.len() {
-            if self.slots[s].live {
-                self.evict(s as u32);
+        if self.refused.is_none() {
+            match mem::reserve(&mut self.free, self.slots.len()) {
+                Ok(()) => {
+                    for s in 0..self.slots.len() {
+                        if self.slots[s].live {
+                            self.evict(s as u32);
+                        }
+                    }
+                    self.flush(sink);
+                }
+                Err(e) => self.refused = Some(e),
             }
         }
-        self.flush(sink);
         let mut first = self.blame;
         for e in self.edges.values() {
             if first.is_none_or(|(t, _)| e.seq < t) {

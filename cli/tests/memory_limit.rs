@@ -1,12 +1,33 @@
-//! `capdiv surface` under a memory limit: an allocation the system refuses is
-//! reported as one line `error: … out of memory …` with exit status 2, not
-//! an abort with a backtrace.
+//! The CLI under a memory limit (`ulimit -v`): an allocation the system
+//! refuses — in the output built whole, in the adaptive refinement, in the
+//! streaming weld — is reported as one line `error: … out of memory …` with
+//! exit status 2 and no output file, not an abort with a backtrace.
 
 mod common;
 
-use common::{s, tempdir};
+use common::{polar_json, s, tempdir, write_json};
 use std::fmt::Write as _;
 use std::process::Command;
+
+/// Runs `script` (a `ulimit -v` and the command, under `sh`): exit status
+/// 2, nothing on stdout, one line `error: … out of memory …` on stderr
+/// (no panic, no backtrace though `RUST_BACKTRACE=1`), no `output`.
+fn runs_out_of_memory(script: &str, output: &std::path::Path) {
+    let out = Command::new("sh")
+        .args(["-c", script])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("run sh");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(out.stdout.is_empty());
+    let lines: Vec<&str> = stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "stderr: {stderr}");
+    assert!(lines[0].starts_with("error: "), "{stderr}");
+    assert!(lines[0].contains("out of memory"), "{stderr}");
+    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
+    assert!(!output.exists());
+}
 
 /// A torus of `n × n` quads, each split into two triangles, as OBJ text.
 fn triangle_torus(n: usize) -> String {
@@ -49,20 +70,7 @@ fn surface_out_of_memory_is_one_line_and_exit_2() {
         s(&input),
         s(&output)
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .env("RUST_BACKTRACE", "1")
-        .output()
-        .expect("run sh");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
-    assert!(out.stdout.is_empty());
-    let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "stderr: {stderr}");
-    assert!(lines[0].starts_with("error: "), "{stderr}");
-    assert!(lines[0].contains("out of memory"), "{stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
-    assert!(!output.exists());
+    runs_out_of_memory(&script, &output);
 }
 
 /// A torus of `n × n` quads with every edge creased at `sharpness`, as OBJ
@@ -121,18 +129,34 @@ fn adaptive_refinement_out_of_memory_is_one_line_and_exit_2() {
         s(&input),
         s(&output)
     );
-    let out = Command::new("sh")
-        .args(["-c", &script])
-        .env("RUST_BACKTRACE", "1")
-        .output()
-        .expect("run sh");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
-    assert!(out.stdout.is_empty());
-    let lines: Vec<&str> = stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "stderr: {stderr}");
-    assert!(lines[0].starts_with("error: "), "{stderr}");
-    assert!(lines[0].contains("out of memory"), "{stderr}");
-    assert!(!stderr.contains("panicked") && !stderr.contains("backtrace"));
-    assert!(!output.exists());
+    runs_out_of_memory(&script, &output);
+}
+
+#[test]
+fn streaming_weld_out_of_memory_is_one_line_and_exit_2() {
+    let dir = tempdir();
+    // A valence-6 pole streamed to depth 13: ring 13 has 6·2^14 patches,
+    // and the weld holds the open edges between the rings written and
+    // those to come (tens of MB at depth 13), the kernel's stream a few
+    // KB: the limit leaves room for the stream, not for the weld.
+    let links: Vec<Vec<[f64; 3]>> = (1..=5)
+        .map(|k| {
+            let r = 0.5 * k as f64;
+            (0..6)
+                .map(|j| {
+                    let a = std::f64::consts::TAU * j as f64 / 6.0;
+                    [r * a.cos(), r * a.sin(), 0.1 * (k * k) as f64]
+                })
+                .collect()
+        })
+        .collect();
+    let input = write_json(dir.path(), "pole.json", &polar_json([0.0; 3], &links));
+    let input = s(&input);
+    let output = dir.path().join("out.obj");
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v 80000 && exec '{bin}' patches --depth 13 --stream --format obj '{input}' -o '{}'",
+        s(&output)
+    );
+    runs_out_of_memory(&script, &output);
 }
