@@ -67,7 +67,7 @@ fn streamed_obj_is_the_collected_tessellation() {
         let parsed = capdiv_mesh::obj::parse_obj(&obj_of(&mesh)).unwrap();
         let surface =
             build_scheme::<f64>(name, &parsed, depth, &[], "f64", false, u64::MAX).unwrap();
-        let tess = tessellate_surface(&surface, &parsed, grid as usize, WELD_F64, None);
+        let tess = tessellate_surface(&surface, &parsed, grid as usize, WELD_F64, None).unwrap();
         let collected = obj_text(&tess, &surface.summary, "title");
 
         assert_eq!(

@@ -123,7 +123,9 @@ fn mesh(text: &str, depth: u32) {
     let r = surface::build::<f64>(NAME, &m, depth, &[], "f64");
     not_nonfinite(&r, fin, "surface f64");
     if let Ok(s) = &r {
-        let t = surface::tessellate_surface(s, &m, 2, surface::WELD_F64, None);
+        // (A few hundred patches: running out of memory here is a bug.)
+        let t = surface::tessellate_surface(s, &m, 2, surface::WELD_F64, None)
+            .expect("tessellation of a small surface");
         let _ = surface::closed_text(&t.info.closed);
     }
     let r32 = surface::build::<f32>(NAME, &m, depth, &[], "f32");

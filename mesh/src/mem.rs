@@ -7,8 +7,9 @@
 //! reservation do not allocate again.
 //!
 //! The analysis (topology, whole-mesh steps, the adaptive refinement with
-//! its levels, points and patches, the plan) and the streaming weld
-//! ([`crate::tessellate::StreamTessellator`]) reserve this way; what they
+//! its levels, points and patches, the plan) and the tessellations (the
+//! streaming weld, [`crate::tessellate::StreamTessellator`], and
+//! [`crate::tessellate::try_tessellate`]) reserve this way; what they
 //! allocate as it is has the size of one vertex's neighbourhood (a fan, a
 //! stencil row being built, a cap's c-net) or of one patch's layout.
 //! `tests/out_of_memory.rs` refuses each of their allocations of 4 KB or

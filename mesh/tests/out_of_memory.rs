@@ -1,9 +1,10 @@
-//! The analysis and the streamed tessellation under refused allocations:
-//! whichever of their allocations of a mesh's size the system refuses,
+//! The analysis and the tessellation under refused allocations: whichever
+//! of their allocations of a mesh's size the system refuses,
 //! `SurfacePlan::for_mesh` returns `MeshError::OutOfMemory` (naming the
-//! size it needed) and `StreamTessellator` reports it and stops; neither
-//! aborts the process (an infallible allocation that is refused would) nor
-//! goes on around the refusal.
+//! size it needed), `try_tessellate` an `OutOfMemory`, and
+//! `StreamTessellator` reports it and stops; none aborts the process (an
+//! infallible allocation that is refused would) nor goes on around the
+//! refusal.
 //!
 //! A global allocator refuses, on the armed test thread, the `k`-th
 //! allocation of [`LARGE`] bytes or more (new blocks and growth alike), for
@@ -13,7 +14,7 @@
 //! 4 KB there would be a mesh no other buffer could hold.
 
 use capdiv::Point3;
-use capdiv_mesh::tessellate::{Face, MeshSink, StreamTessellator};
+use capdiv_mesh::tessellate::{try_tessellate, Face, MeshSink, StreamTessellator};
 use capdiv_mesh::{
     samples, CapRecord, Evaluator, MeshError, MeshInput, PatchRecord, PlanOptions, SurfacePlan,
     SurfaceSink,
@@ -180,8 +181,8 @@ fn stream(
     (at_refusal, out)
 }
 
-#[test]
-fn every_large_allocation_of_the_stream_can_be_refused() {
+/// The patches of the feature torus (6), evaluated unarmed.
+fn feature_torus_patches() -> Vec<PatchRecord<f64>> {
     let mesh = samples::feature_torus(6);
     let plan = SurfacePlan::for_mesh(&mesh, PlanOptions::default()).unwrap();
     let mut patches = Patches::default();
@@ -189,6 +190,29 @@ fn every_large_allocation_of_the_stream_can_be_refused() {
         .unwrap()
         .evaluate(&mesh.vertices, &mut patches)
         .unwrap();
+    patches.0
+}
+
+#[test]
+fn every_large_allocation_of_the_collected_tessellation_can_be_refused() {
+    let patches = feature_torus_patches();
+    let tessellate = || try_tessellate(patches.iter().map(|p| (p, p.level)), 4, 8e-9);
+    let (whole, large) = refusing(usize::MAX, tessellate);
+    assert!(whole.unwrap().faces.len() > 10_000);
+    // The samples, the weld's sorted points and classes, the vertices and
+    // faces: each past 4 KB.
+    assert!(large > 10, "{large} large allocations");
+    for k in 0..large {
+        match refusing(k, tessellate).0 {
+            Err(e) => assert!(e.bytes > 0, "refusal {k}"),
+            Ok(_) => panic!("refusal {k} of {large}: a tessellation"),
+        }
+    }
+}
+
+#[test]
+fn every_large_allocation_of_the_stream_can_be_refused() {
+    let patches = Patches(feature_torus_patches());
     // (The tessellator is made unarmed: its fixed tables, a layout per
     // kind of patch edge, do not depend on the mesh.)
     let new = || StreamTessellator::new(4, 1e-9 * 8.0);

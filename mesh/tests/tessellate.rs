@@ -618,7 +618,7 @@ fn hash_grid_weld_matches_brute_force() {
                 pts.push(q + p(d[0], d[1], d[2]));
             }
         }
-        let fast = weld::representatives(&pts, tol);
+        let fast = weld::representatives(&pts, tol).unwrap();
         assert_eq!(fast, brute_weld(&pts, tol), "tol {tol}");
         assert!(fast.iter().enumerate().any(|(k, &r)| r as usize != k));
     }
@@ -630,12 +630,21 @@ fn hash_grid_weld_matches_brute_force() {
         p(f64::NAN, 0.0, 0.0),
         p(0.0, 1.0, 2.0 + 1e-16),
     ];
-    assert_eq!(weld::representatives(&pts, 0.0), vec![0, 0, 2, 3, 0]);
-    assert_eq!(weld::representatives(&pts, -1.0), vec![0, 0, 2, 3, 0]);
-    assert_eq!(weld::representatives(&pts[..2], f64::NAN), vec![0, 0]);
+    assert_eq!(
+        weld::representatives(&pts, 0.0).unwrap(),
+        vec![0, 0, 2, 3, 0]
+    );
+    assert_eq!(
+        weld::representatives(&pts, -1.0).unwrap(),
+        vec![0, 0, 2, 3, 0]
+    );
+    assert_eq!(
+        weld::representatives(&pts[..2], f64::NAN).unwrap(),
+        vec![0, 0]
+    );
     // Infinite tolerance: everything finite is one vertex.
     assert_eq!(
-        weld::representatives(&[pts[0], pts[4], p(1e300, 0.0, 0.0)], f64::INFINITY),
+        weld::representatives(&[pts[0], pts[4], p(1e300, 0.0, 0.0)], f64::INFINITY).unwrap(),
         vec![0, 0, 0]
     );
 }
@@ -829,7 +838,7 @@ fn timing_large_patchwork() {
     let mut pts = t.positions.clone();
     pts.extend_from_slice(&t.positions);
     let start = std::time::Instant::now();
-    let _ = weld::representatives(&pts, 1e-9);
+    let _ = weld::representatives(&pts, 1e-9).unwrap();
     println!(
         "weld of {} points: {:.3} s",
         pts.len(),

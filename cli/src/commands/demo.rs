@@ -278,7 +278,8 @@ fn one_mesh(
     use super::surface::{build, closed_text, obj_text, tessellate_surface, WELD_F64};
     let start = Instant::now();
     let surface = build::<f64>(name, mesh, MESH_DEPTH, &[], "f64")?;
-    let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None);
+    let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None)
+        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
     let title = format!("capdiv demo: {name}, {what}");
     let obj = obj_text(&tess, &surface.summary, &title);
     let png = png_bytes(&tess.mesh, None, Up::Z)?;

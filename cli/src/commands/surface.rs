@@ -48,12 +48,12 @@ use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
 use capdiv_mesh::sinks::{CollectSurface, PatchCounts, SurfaceStats, Tee};
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, tessellate, tessellate_guided, write_obj, BadEdge, EdgeFault, Face,
-    Tessellation,
+    is_closed_and_oriented, try_tessellate, try_tessellate_guided, write_obj, BadEdge, EdgeFault,
+    Face, Tessellation,
 };
 use capdiv_mesh::{
-    BoundedPlan, CapRecord, FaceVarying, MeshInput, PatchKind, PatchRecord, PatchUv, PlanOptions,
-    SurfaceSink, Topology,
+    BoundedPlan, CapRecord, FaceVarying, MeshInput, OutOfMemory, PatchKind, PatchRecord, PatchUv,
+    PlanOptions, SurfaceSink, Topology,
 };
 use serde::Serialize;
 use std::fmt::Write;
@@ -244,7 +244,8 @@ fn produce<R: Scalar>(
                 SurfaceFormat::Glb | SurfaceFormat::Gltf => |p: &PatchRecord<_>| p.face,
                 _ => |p: &PatchRecord<_>| p.level,
             };
-            let tess = tessellate_surface_tagged(&surface, mesh, grid, weld, guide.as_ref(), tag);
+            let tess = tessellate_surface_tagged(&surface, mesh, grid, weld, guide.as_ref(), tag)
+                .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
             let mut report = report(name, &surface.summary, Some(&tess.info), naming);
             let bytes = match format {
                 SurfaceFormat::Obj => {
@@ -934,7 +935,7 @@ pub fn tessellate_surface<R: Scalar>(
     grid: usize,
     factor: f64,
     guide: Option<&Surface<f64>>,
-) -> Tess<R> {
+) -> Result<Tess<R>, OutOfMemory> {
     tessellate_surface_tagged(surface, mesh, grid, factor, guide, |p| p.level)
 }
 
@@ -947,7 +948,7 @@ pub fn tessellate_surface_tagged<R: Scalar>(
     factor: f64,
     guide: Option<&Surface<f64>>,
     tag: fn(&PatchRecord<R>) -> u32,
-) -> Tess<R> {
+) -> Result<Tess<R>, OutOfMemory> {
     let start = Instant::now();
     let (tolerance, size) = weld_tolerance(mesh, factor);
     fn tess_patches<S: capdiv::Real>(
@@ -965,15 +966,15 @@ pub fn tessellate_surface_tagged<R: Scalar>(
     let t = match guide {
         Some(g) => {
             let (guide_tolerance, _) = weld_tolerance(mesh, WELD_F64);
-            tessellate_guided(
+            try_tessellate_guided(
                 tess_patches(surface, tag),
                 tess_patches(g, |p| p.level),
                 grid,
                 guide_tolerance,
                 R::from_f64(tolerance),
-            )
+            )?
         }
-        None => tessellate(tess_patches(surface, tag), grid, R::from_f64(tolerance)),
+        None => try_tessellate(tess_patches(surface, tag), grid, R::from_f64(tolerance))?,
     };
     // Report the tolerance that decided the welding.
     let (tolerance, factor) = match guide {
@@ -993,7 +994,7 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         closed: closed_through_seams(&t),
         time_ms: start.elapsed().as_secs_f64() * 1e3,
     };
-    Tess { mesh: t, info }
+    Ok(Tess { mesh: t, info })
 }
 
 /// [`is_closed_and_oriented`] of the tessellation, UV seams joined (a seam

@@ -54,7 +54,7 @@ pub mod stream;
 pub mod weld;
 
 use crate::evaluate::PatchRecord;
-use alloc::vec;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 use core::borrow::Borrow;
@@ -241,9 +241,32 @@ pub fn tessellate<R: Real, P: Borrow<PatchRecord<R>>>(
     grid: usize,
     weld_tolerance: R,
 ) -> Tessellation<R> {
-    let raw = sample_all(patches, grid);
-    let rep = weld::representatives(&raw.positions, weld_tolerance);
+    or_abort(try_tessellate(patches, grid, weld_tolerance))
+}
+
+/// [`tessellate`], every buffer reserved fallibly: a refused allocation is
+/// an error instead of an abort.
+pub fn try_tessellate<R: Real, P: Borrow<PatchRecord<R>>>(
+    patches: impl IntoIterator<Item = (P, u32)>,
+    grid: usize,
+    weld_tolerance: R,
+) -> Result<Tessellation<R>, OutOfMemory> {
+    let raw = sample_all(patches, grid)?;
+    let rep = weld::representatives(&raw.positions, weld_tolerance)?;
     assemble(raw, rep)
+}
+
+/// The value, or the abort a `Vec`'s growth makes when the system refuses
+/// an allocation (for the functions whose signature has no error).
+fn or_abort<T>(r: Result<T, OutOfMemory>) -> T {
+    match r {
+        Ok(t) => t,
+        Err(e) => {
+            let layout = core::alloc::Layout::from_size_align(e.bytes, 1)
+                .unwrap_or(core::alloc::Layout::new::<u8>());
+            alloc::alloc::handle_alloc_error(layout)
+        }
+    }
 }
 
 /// [`tessellate`] of `patches`, welded where the samples of `guide` weld:
@@ -260,38 +283,54 @@ pub fn tessellate_guided<R: Real, S: Real, P: Borrow<PatchRecord<R>>, G: Borrow<
     guide_tolerance: S,
     fallback_tolerance: R,
 ) -> Tessellation<R> {
-    let raw = sample_all(patches, grid);
-    let guide = sample_all(guide, grid);
+    or_abort(try_tessellate_guided(
+        patches,
+        guide,
+        grid,
+        guide_tolerance,
+        fallback_tolerance,
+    ))
+}
+
+/// [`tessellate_guided`], every buffer reserved fallibly.
+pub fn try_tessellate_guided<
+    R: Real,
+    S: Real,
+    P: Borrow<PatchRecord<R>>,
+    G: Borrow<PatchRecord<S>>,
+>(
+    patches: impl IntoIterator<Item = (P, u32)>,
+    guide: impl IntoIterator<Item = (G, u32)>,
+    grid: usize,
+    guide_tolerance: S,
+    fallback_tolerance: R,
+) -> Result<Tessellation<R>, OutOfMemory> {
+    let raw = sample_all(patches, grid)?;
+    let guide = sample_all(guide, grid)?;
     let rep = if guide.positions.len() == raw.positions.len() && guide.faces == raw.faces {
-        weld::representatives(&guide.positions, guide_tolerance)
+        weld::representatives(&guide.positions, guide_tolerance)?
     } else {
-        weld::representatives(&raw.positions, fallback_tolerance)
+        weld::representatives(&raw.positions, fallback_tolerance)?
     };
     assemble(raw, rep)
 }
 
-/// Every patch's samples and faces, unwelded. (The collected tessellation
-/// returns no error: a refused allocation aborts, as a `Vec`'s growth does;
-/// [`StreamTessellator`] reports it instead.)
+/// Every patch's samples and faces, unwelded.
 fn sample_all<R: Real, P: Borrow<PatchRecord<R>>>(
     patches: impl IntoIterator<Item = (P, u32)>,
     grid: usize,
-) -> sample::Raw<R> {
-    let mut raw = sample::Raw::new(grid.max(1));
+) -> Result<sample::Raw<R>, OutOfMemory> {
+    let mut raw = sample::Raw::try_new(grid.max(1))?;
     for (p, tag) in patches {
-        if let Err(e) = raw.push(p.borrow(), tag) {
-            let layout = core::alloc::Layout::from_size_align(e.bytes, 1)
-                .unwrap_or(core::alloc::Layout::new::<u8>());
-            alloc::alloc::handle_alloc_error(layout);
-        }
+        raw.push(p.borrow(), tag)?;
     }
-    raw
+    Ok(raw)
 }
 
 /// Welds `raw` into the tessellation: sample `k` becomes the vertex of its
 /// representative `rep[k] ≤ k` (as [`weld::representatives`] returns them),
 /// split across UV seams when the samples have UVs.
-fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
+fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Result<Tessellation<R>, OutOfMemory> {
     let sample::Raw {
         positions: raw_pos,
         normals: raw_nrm,
@@ -304,8 +343,10 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     let (rep, by_position) = if raw_uvs.is_empty() {
         (rep, Vec::new())
     } else {
+        let more = samples.saturating_sub(raw_uvs.len());
+        mem::reserve(&mut raw_uvs, more)?;
         raw_uvs.resize(samples, [0.0; 2]);
-        (weld::split_by_uv(&rep, &raw_uvs, weld::UV_TOLERANCE), rep)
+        (weld::split_by_uv(&rep, &raw_uvs, weld::UV_TOLERANCE)?, rep)
     };
     let rep = rep.as_slice();
     assert!(
@@ -317,7 +358,7 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     // A vertex split off by a UV seam takes everything but its UV from the
     // first vertex of its position class (its seam origin): position, normal
     // and the faces' connectivity are those of the tessellation without UVs.
-    let mut index = vec![u32::MAX; samples];
+    let mut index = mem::filled(samples, u32::MAX)?;
     let mut positions = Vec::new();
     let mut normals = Vec::new();
     // Whether some patch sample (not only hole points) went into the vertex.
@@ -331,15 +372,15 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
         if r == k {
             let v = positions.len() as u32;
             index[k] = v;
-            positions.push(raw_pos[origin.unwrap_or(k)]);
+            mem::push(&mut positions, raw_pos[origin.unwrap_or(k)])?;
             if let Some(uv) = raw_uvs.get(k) {
-                uvs.push(*uv);
+                mem::push(&mut uvs, *uv)?;
             }
             if let Some(o) = origin {
-                seam_origin.push(index[o]);
+                mem::push(&mut seam_origin, index[o])?;
             }
-            normals.push(Point3::ZERO);
-            sampled.push(false);
+            mem::push(&mut normals, Point3::ZERO)?;
+            mem::push(&mut sampled, false)?;
         }
         let w = index[origin.map_or(r, |o| o)] as usize;
         if let Some(n) = raw_nrm[k] {
@@ -351,8 +392,8 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
     }
     let origin_of = |v: u32| seam_origin.get(v as usize).copied().unwrap_or(v);
 
-    let mut faces = Vec::with_capacity(raw_faces.len());
-    let mut tags = Vec::with_capacity(raw_faces.len());
+    let mut faces = mem::with_capacity(raw_faces.len())?;
+    let mut tags = mem::with_capacity(raw_faces.len())?;
     let mut degenerate_dropped = 0;
     for (f, tag) in raw_faces.into_iter().zip(raw_tags) {
         let f = f.map(|k| index[rep[k as usize] as usize]);
@@ -401,7 +442,7 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
         }
     }
 
-    Tessellation {
+    Ok(Tessellation {
         positions,
         normals,
         faces,
@@ -410,5 +451,5 @@ fn assemble<R: Real>(raw: sample::Raw<R>, rep: Vec<u32>) -> Tessellation<R> {
         seam_origin,
         samples,
         degenerate_dropped,
-    }
+    })
 }

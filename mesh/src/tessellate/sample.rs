@@ -37,22 +37,28 @@ pub(super) struct Raw<R> {
 }
 
 impl<R: Real> Raw<R> {
+    /// An empty set for `grid` segments per side (its tables of a layout
+    /// per kind of patch, a few KB, aborting if the system refuses them).
     pub fn new(grid: usize) -> Self {
-        let uv_params: Vec<f64> = (0..=2 * grid)
-            .map(|k| k as f64 / (2 * grid) as f64)
-            .collect();
-        let params = uv_params.iter().map(|&t| R::from_f64(t)).collect();
-        Raw {
+        super::or_abort(Self::try_new(grid))
+    }
+
+    /// [`Self::new`], its tables reserved fallibly.
+    pub fn try_new(grid: usize) -> Result<Self, OutOfMemory> {
+        let uv_params: Vec<f64> =
+            mem::collect((0..=2 * grid).map(|k| k as f64 / (2 * grid) as f64))?;
+        let params = mem::collect(uv_params.iter().map(|&t| R::from_f64(t)))?;
+        Ok(Raw {
             grid,
             params,
-            layouts: alloc::vec![PatchLayout::default(); 256],
+            layouts: mem::filled(256, PatchLayout::default())?,
             positions: Vec::new(),
             normals: Vec::new(),
             faces: Vec::new(),
             tags: Vec::new(),
             uvs: Vec::new(),
             uv_params,
-        }
+        })
     }
 
     /// Samples and triangulates `p`, its faces tagged `tag`. The room for

@@ -20,7 +20,7 @@
 //! other. Coordinates beyond `i64::MAX · c` share the saturated cells: still
 //! correct, only slower.
 
-use alloc::vec;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 use capdiv::{Point3, Real};
 
@@ -37,7 +37,7 @@ struct Entry {
 
 /// For each point, the first point of its class (the smallest index; the
 /// point itself when it is the first).
-pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Vec<u32> {
+pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Result<Vec<u32>, OutOfMemory> {
     let count = points.len();
     assert!(
         u32::try_from(count).is_ok(),
@@ -54,19 +54,15 @@ pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Vec<u32> {
             libm::floor(x / cell) as i64
         }
     };
-    let mut sorted: Vec<Entry> = points
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            // −0 made +0.
-            let x = p.0.map(|c| c.to_f64() + 0.0);
-            Entry {
-                key: x.map(key_of),
-                x,
-                index: k as u32,
-            }
-        })
-        .collect();
+    let mut sorted: Vec<Entry> = mem::collect(points.iter().enumerate().map(|(k, p)| {
+        // −0 made +0.
+        let x = p.0.map(|c| c.to_f64() + 0.0);
+        Entry {
+            key: x.map(key_of),
+            x,
+            index: k as u32,
+        }
+    }))?;
     sorted.sort_unstable_by(|a, b| {
         a.key
             .cmp(&b.key)
@@ -75,7 +71,7 @@ pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Vec<u32> {
     });
 
     let close = |a: &[f64; 3], b: &[f64; 3]| (0..3).all(|d| libm::fabs(a[d] - b[d]) <= tol);
-    let mut parent: Vec<u32> = (0..count as u32).collect();
+    let mut parent: Vec<u32> = mem::collect(0..count as u32)?;
     let mut run_start = 0;
     for s in 0..count {
         let e = &sorted[s];
@@ -128,17 +124,17 @@ pub fn representatives<R: Real>(points: &[Point3<R>], tol: R) -> Vec<u32> {
     }
 
     // The smallest index of each class, at its root.
-    let mut first = vec![u32::MAX; count];
+    let mut first = mem::filled(count, u32::MAX)?;
     for (s, e) in sorted.iter().enumerate() {
         let r = find(&mut parent, s);
         first[r] = first[r].min(e.index);
     }
-    let mut rep = vec![0u32; count];
+    let mut rep = mem::filled(count, 0u32)?;
     for (s, e) in sorted.iter().enumerate() {
         let r = find(&mut parent, s);
         rep[e.index as usize] = first[r];
     }
-    rep
+    Ok(rep)
 }
 
 /// Two texture coordinates closer than this (per component, relative to
@@ -154,7 +150,7 @@ pub const UV_TOLERANCE: f64 = 1e-9;
 /// [`UV_TOLERANCE`]) from the first point of every sub-class so far start
 /// a sub-class of their own. Returns each point's sub-class's first point.
 /// Points of different classes are never joined.
-pub fn split_by_uv(rep: &[u32], uvs: &[[f64; 2]], tol: f64) -> Vec<u32> {
+pub fn split_by_uv(rep: &[u32], uvs: &[[f64; 2]], tol: f64) -> Result<Vec<u32>, OutOfMemory> {
     const END: u32 = u32::MAX;
     let close = |a: [f64; 2], b: [f64; 2]| {
         (0..2).all(|d| {
@@ -164,8 +160,8 @@ pub fn split_by_uv(rep: &[u32], uvs: &[[f64; 2]], tol: f64) -> Vec<u32> {
     };
     // The sub-classes of a class, as a chain of their first points from the
     // class's first point.
-    let mut next = vec![END; rep.len()];
-    let mut out = vec![0u32; rep.len()];
+    let mut next = mem::filled(rep.len(), END)?;
+    let mut out = mem::filled(rep.len(), 0u32)?;
     for k in 0..rep.len() {
         let r = rep[k] as usize;
         if r >= k {
@@ -186,7 +182,7 @@ pub fn split_by_uv(rep: &[u32], uvs: &[[f64; 2]], tol: f64) -> Vec<u32> {
             head = next[head] as usize;
         }
     }
-    out
+    Ok(out)
 }
 
 /// Root of `s`, halving the path.
