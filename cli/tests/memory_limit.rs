@@ -29,8 +29,9 @@ fn runs_out_of_memory(script: &str, output: &std::path::Path) {
     assert!(!output.exists());
 }
 
-/// A torus of `n × n` quads, each split into two triangles, as OBJ text.
-fn triangle_torus(n: usize) -> String {
+/// The `n × n` vertices of a torus (radii 3 and 1) as OBJ `v` lines, row
+/// after row.
+fn torus_vertices(n: usize) -> String {
     let mut text = String::new();
     for i in 0..n {
         for j in 0..n {
@@ -40,6 +41,12 @@ fn triangle_torus(n: usize) -> String {
             let _ = writeln!(text, "v {} {} {}", r * a.cos(), r * a.sin(), b.sin());
         }
     }
+    text
+}
+
+/// A torus of `n × n` quads, each split into two triangles, as OBJ text.
+fn triangle_torus(n: usize) -> String {
+    let mut text = torus_vertices(n);
     let id = |i: usize, j: usize| (i % n) * n + (j % n) + 1;
     for i in 0..n {
         for j in 0..n {
@@ -76,15 +83,7 @@ fn surface_out_of_memory_is_one_line_and_exit_2() {
 /// A torus of `n × n` quads with every edge creased at `sharpness`, as OBJ
 /// text with OpenSubdiv's `t crease` tags.
 fn creased_quad_torus(n: usize, sharpness: f64) -> String {
-    let mut text = String::new();
-    for i in 0..n {
-        for j in 0..n {
-            let a = std::f64::consts::TAU * i as f64 / n as f64;
-            let b = std::f64::consts::TAU * j as f64 / n as f64;
-            let r = 3.0 + b.cos();
-            let _ = writeln!(text, "v {} {} {}", r * a.cos(), r * a.sin(), b.sin());
-        }
-    }
+    let mut text = torus_vertices(n);
     let id = |i: usize, j: usize| (i % n) * n + (j % n);
     for i in 0..n {
         for j in 0..n {
