@@ -189,10 +189,10 @@ pub fn cover(
     let mut level = 0;
     while !active.is_empty() {
         // The faces to refine, with their irregular corners.
-        let mut refined: Vec<(Active, u32)> = mem::with_capacity(active.len())?;
+        let mut refined: Vec<(Active, u32)> = Vec::new();
         for a in active {
             if let Some(bits) = visit(m, &a, level, options, &mut out)? {
-                refined.push((a, bits));
+                mem::push(&mut refined, (a, bits))?;
             }
         }
         if refined.is_empty() {
