@@ -131,13 +131,9 @@ fn adaptive_refinement_out_of_memory_is_one_line_and_exit_2() {
     runs_out_of_memory(&script, &output);
 }
 
-#[test]
-fn streaming_weld_out_of_memory_is_one_line_and_exit_2() {
-    let dir = tempdir();
-    // A valence-6 pole streamed to depth 13: ring 13 has 6·2^14 patches,
-    // and the weld holds the open edges between the rings written and
-    // those to come (tens of MB at depth 13), the kernel's stream a few
-    // KB: the limit leaves room for the stream, not for the weld.
+/// A valence-6 polar configuration (five links, a paraboloid) written to
+/// `dir`; its path.
+fn pole_file(dir: &std::path::Path) -> String {
     let links: Vec<Vec<[f64; 3]>> = (1..=5)
         .map(|k| {
             let r = 0.5 * k as f64;
@@ -149,12 +145,36 @@ fn streaming_weld_out_of_memory_is_one_line_and_exit_2() {
                 .collect()
         })
         .collect();
-    let input = write_json(dir.path(), "pole.json", &polar_json([0.0; 3], &links));
-    let input = s(&input);
+    s(&write_json(dir, "pole.json", &polar_json([0.0; 3], &links))).to_string()
+}
+
+#[test]
+fn streaming_weld_out_of_memory_is_one_line_and_exit_2() {
+    let dir = tempdir();
+    // A valence-6 pole streamed to depth 13: ring 13 has 6·2^14 patches,
+    // and the weld holds the open edges between the rings written and
+    // those to come (tens of MB at depth 13), the kernel's stream a few
+    // KB: the limit leaves room for the stream, not for the weld.
+    let input = pole_file(dir.path());
     let output = dir.path().join("out.obj");
     let bin = env!("CARGO_BIN_EXE_capdiv");
     let script = format!(
         "ulimit -v 80000 && exec '{bin}' patches --depth 13 --stream --format obj '{input}' -o '{}'",
+        s(&output)
+    );
+    runs_out_of_memory(&script, &output);
+}
+
+#[test]
+fn collected_tessellation_out_of_memory_is_one_line_and_exit_2() {
+    let dir = tempdir();
+    // The same pole to depth 12, built whole: its patches fit the limit,
+    // their collected tessellation (samples, weld, vertices) does not.
+    let input = pole_file(dir.path());
+    let output = dir.path().join("out.obj");
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v 100000 && exec '{bin}' patches --depth 12 --format obj '{input}' -o '{}'",
         s(&output)
     );
     runs_out_of_memory(&script, &output);

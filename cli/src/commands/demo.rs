@@ -129,9 +129,9 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let jet = pole::<f64>(name, input)?;
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.tessellate(DEMO_GRID, WELD_F64);
+    let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
     let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
-    let drawn = set.tessellate_with_parameters(DEMO_GRID, WELD_F64);
+    let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
     let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
@@ -198,9 +198,9 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let set = collect_eg::<f64>(name, &input, sample.depth, None)?;
     let c0 = super::eg::dnet::<f64>(name, &input)?.c0().0;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.tessellate(DEMO_GRID, WELD_F64);
+    let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
     let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
-    let drawn = set.tessellate_with_parameters(DEMO_GRID, WELD_F64);
+    let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
     let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(

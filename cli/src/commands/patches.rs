@@ -58,7 +58,7 @@ use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions, TensorPatch};
 use capdiv_mesh::tessellate::{
-    ring_inner_edges, tessellate, write_obj, ObjWriter, PatchGeometry, RingLayout,
+    ring_inner_edges, try_tessellate, write_obj, ObjWriter, PatchGeometry, RingLayout,
     StreamTessellator, Tessellation,
 };
 use capdiv_mesh::{PatchKind, PatchRecord, PatchUv};
@@ -114,43 +114,57 @@ where
 
     /// The patches as the tessellator takes them, each with its level (the
     /// tag of its faces), each ring's edges that the next ring meets marked
-    /// finer ([`inner_edges`]).
-    pub fn tess_patches(&self) -> Vec<(PatchRecord<R>, u32)> {
-        let mut finer = vec![0u8; self.outer];
-        for (r, &(_, len)) in self.rings.iter().enumerate() {
-            let last = r + 1 == self.rings.len();
-            finer.extend((0..len).map(|j| if last { 0 } else { inner_edges(K, j, len) }));
-        }
+    /// finer ([`inner_edges`]): made one by one as they are taken.
+    pub fn tess_patches(&self) -> impl Iterator<Item = (PatchRecord<R>, u32)> + '_ {
+        let last = self.rings.len().saturating_sub(1);
+        let finer =
+            core::iter::repeat_n(0u8, self.outer).chain(self.rings.iter().enumerate().flat_map(
+                move |(r, &(_, len))| {
+                    (0..len).map(move |j| if r == last { 0 } else { inner_edges(K, j, len) })
+                },
+            ));
         self.patches
             .iter()
             .zip(finer)
             .map(|(p, finer)| (record(p.level, p.patch, finer), p.level))
-            .collect()
     }
 
     /// The welded tessellation, `grid` segments per patch side, samples
-    /// within `factor ×` [`PatchSet::size`] merged.
-    pub fn tessellate(&self, grid: usize, factor: f64) -> Tessellation<R> {
-        tessellate(self.tess_patches(), grid, R::from_f64(factor * self.size))
+    /// within `factor ×` [`PatchSet::size`] merged; an allocation refused is
+    /// the out-of-memory error of input `name`.
+    pub fn tessellate(
+        &self,
+        name: &str,
+        grid: usize,
+        factor: f64,
+    ) -> Result<Tessellation<R>, CliError> {
+        try_tessellate(self.tess_patches(), grid, R::from_f64(factor * self.size))
+            .map_err(|e| CliError::out_of_memory(name, e.bytes))
     }
 
     /// The tessellation with each patch's own parameters `(u, v)` as texture
     /// coordinates, so vertices are split along patch edges and carry the
     /// parameters of their patch (the PNG preview draws patch boundaries
     /// from them).
-    pub fn tessellate_with_parameters(&self, grid: usize, factor: f64) -> Tessellation<R> {
+    pub fn tessellate_with_parameters(
+        &self,
+        name: &str,
+        grid: usize,
+        factor: f64,
+    ) -> Result<Tessellation<R>, CliError> {
         let square = PatchUv {
             corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
             hole: [0.0, 0.0],
         };
-        let patches = self.tess_patches().into_iter().map(|(p, tag)| {
+        let patches = self.tess_patches().map(|(p, tag)| {
             let record = PatchRecord {
                 uv: Some(square),
                 ..p
             };
             (record, tag)
         });
-        tessellate(patches, grid, R::from_f64(factor * self.size))
+        try_tessellate(patches, grid, R::from_f64(factor * self.size))
+            .map_err(|e| CliError::out_of_memory(name, e.bytes))
     }
 
     /// OBJ text of the welded tessellation `tess`.
@@ -327,11 +341,11 @@ where
         }
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);
-            let tess = set.tessellate(grid, factor);
+            let tess = set.tessellate(name, grid, factor)?;
             set.to_obj(&tess, grid, factor, &title).into_bytes()
         }
         PatchFormat::Png => {
-            let tess = set.tessellate_with_parameters(grid, factor);
+            let tess = set.tessellate_with_parameters(name, grid, factor)?;
             png_bytes(&tess, Some(&tess.uvs), Up::Z)?
         }
     })
