@@ -233,7 +233,7 @@ pub extern "C" fn viewer_export_obj(what: u32) -> i32 {
         let text = match (what, st.scene.as_ref()) {
             (_, None) => Err("no mesh loaded".to_string()),
             (0, Some(sc)) => Ok(sc.control_obj()),
-            (1, Some(sc)) => Ok(sc.surface_obj()),
+            (1, Some(sc)) => sc.surface_obj(),
             _ => Err(format!("export {what}: 0 (control mesh) or 1 (surface)")),
         };
         match text {

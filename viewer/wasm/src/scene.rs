@@ -392,12 +392,13 @@ impl Scene {
     /// its samples welded by position (tolerance 1e-9 of the box size; the
     /// patches' shared edges are sampled at the same parameters), one
     /// normal per vertex (the first welded sample's that exists), the
-    /// triangles with their corners not welded together.
-    pub fn surface_obj(&self) -> String {
+    /// triangles with their corners not welded together. An allocation of
+    /// the weld that is refused is the error's message.
+    pub fn surface_obj(&self) -> Result<String, String> {
         let s = &self.tess.surface;
         let size = (0..3).map(|c| s.hi[c] - s.lo[c]).fold(0.0, f64::max);
         let points: Vec<Point3<f64>> = s.position.iter().map(|&p| Point3(p)).collect();
-        let rep = representatives(&points, 1e-9 * size);
+        let rep = representatives(&points, 1e-9 * size).map_err(|e| e.message())?;
         let mut index = vec![u32::MAX; s.len()];
         let mut t = Tessellation {
             positions: Vec::new(),
@@ -430,7 +431,7 @@ impl Scene {
                 t.tags.push(0);
             }
         }
-        write_obj(
+        Ok(write_obj(
             &t,
             &[format!(
                 "capdiv viewer: surface of {}, depth {}, {}",
@@ -442,7 +443,7 @@ impl Scene {
                     "C2PS and EG caps"
                 }
             )],
-        )
+        ))
     }
 
     /// Current control-point positions.
@@ -633,7 +634,7 @@ mod tests {
         let s = sc.surface();
         let size = (0..3).map(|c| s.hi[c] - s.lo[c]).fold(0.0, f64::max);
         let points: Vec<Point3<f64>> = s.position.iter().map(|&p| Point3(p)).collect();
-        let rep = representatives(&points, 1e-9 * size);
+        let rep = representatives(&points, 1e-9 * size).expect("weld");
         s.indices
             .chunks(3)
             .map(|t| [rep[t[0] as usize], rep[t[1] as usize], rep[t[2] as usize]])
@@ -867,7 +868,7 @@ mod tests {
         let mut sc = scene("globe", 3);
         let p = sc.positions()[0];
         sc.move_vertex(0, [p[0] * 1.2, p[1], p[2]]).unwrap();
-        let (v, vn, f) = obj_parts(&sc.surface_obj());
+        let (v, vn, f) = obj_parts(&sc.surface_obj().unwrap());
         let s = sc.surface();
         assert_eq!(v.len(), vn.len());
         // Welding: fewer vertices than samples, each one a sample's position
