@@ -14,10 +14,10 @@
 //! 4 KB there would be a mesh no other buffer could hold.
 
 use capdiv::Point3;
+use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{try_tessellate, Face, MeshSink, StreamTessellator};
 use capdiv_mesh::{
-    samples, CapRecord, Evaluator, MeshError, MeshInput, PatchRecord, PlanOptions, SurfacePlan,
-    SurfaceSink,
+    samples, Evaluator, MeshError, MeshInput, PatchRecord, PlanOptions, SurfacePlan,
 };
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -132,17 +132,6 @@ fn every_large_allocation_of_the_analysis_can_be_refused() {
     }
 }
 
-/// The patches of an evaluation, in order.
-#[derive(Default)]
-struct Patches(Vec<PatchRecord<f64>>);
-
-impl SurfaceSink<f64> for Patches {
-    fn patch(&mut self, p: &PatchRecord<f64>) {
-        self.0.push(p.clone());
-    }
-    fn cap(&mut self, _: &CapRecord<f64>) {}
-}
-
 /// Counts what a stream hands over, without allocating.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Handed {
@@ -185,12 +174,12 @@ fn stream(
 fn feature_torus_patches() -> Vec<PatchRecord<f64>> {
     let mesh = samples::feature_torus(6);
     let plan = SurfacePlan::for_mesh(&mesh, PlanOptions::default()).unwrap();
-    let mut patches = Patches::default();
+    let mut collected = CollectSurface::new();
     Evaluator::<f64>::new(&plan)
         .unwrap()
-        .evaluate(&mesh.vertices, &mut patches)
+        .evaluate(&mesh.vertices, &mut collected)
         .unwrap();
-    patches.0
+    collected.finish().unwrap().0
 }
 
 #[test]
@@ -212,12 +201,12 @@ fn every_large_allocation_of_the_collected_tessellation_can_be_refused() {
 
 #[test]
 fn every_large_allocation_of_the_stream_can_be_refused() {
-    let patches = Patches(feature_torus_patches());
+    let patches = feature_torus_patches();
     // (The tessellator is made unarmed: its fixed tables, a layout per
     // kind of patch edge, do not depend on the mesh.)
     let new = || StreamTessellator::new(4, 1e-9 * 8.0);
     let tess = new();
-    let ((refused, whole), large) = refusing(usize::MAX, || stream(tess, &patches.0));
+    let ((refused, whole), large) = refusing(usize::MAX, || stream(tess, &patches));
     assert_eq!(refused, None);
     assert!(whole.faces > 10_000, "{whole:?}");
     // The weld table, the waiting output and the open edges grow past
@@ -225,7 +214,7 @@ fn every_large_allocation_of_the_stream_can_be_refused() {
     assert!(large > 10, "{large} large allocations");
     for k in 0..large {
         let tess = new();
-        let ((refused, out), _) = refusing(k, || stream(tess, &patches.0));
+        let ((refused, out), _) = refusing(k, || stream(tess, &patches));
         // Reported, and nothing handed over after it: a prefix of the
         // output.
         assert_eq!(refused, Some(out), "refusal {k} of {large}");
