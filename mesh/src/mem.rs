@@ -122,6 +122,19 @@ pub fn to_vec<T: Clone>(items: &[T]) -> Result<Vec<T>, OutOfMemory> {
     Ok(v)
 }
 
+/// The value, or the abort a `Vec`'s growth makes when the system refuses
+/// an allocation: for callers whose signature has no error to return.
+pub fn or_abort<T>(r: Result<T, OutOfMemory>) -> T {
+    match r {
+        Ok(t) => t,
+        Err(e) => {
+            let layout = core::alloc::Layout::from_size_align(e.bytes, 1)
+                .unwrap_or(core::alloc::Layout::new::<u8>());
+            alloc::alloc::handle_alloc_error(layout)
+        }
+    }
+}
+
 /// Room for `additional` more entries in a hash map.
 #[inline]
 pub fn reserve_map<K, V, S>(

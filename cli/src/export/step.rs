@@ -369,11 +369,7 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
         .collect();
     // (Built whole, bounded by `--max-patches`: a refused allocation
     // aborts here, as a `Vec`'s growth does.)
-    let rep = weld::representatives(&ends, tol).unwrap_or_else(|e| {
-        let layout = std::alloc::Layout::from_size_align(e.bytes, 1)
-            .unwrap_or(std::alloc::Layout::new::<u8>());
-        std::alloc::handle_alloc_error(layout)
-    });
+    let rep = capdiv_mesh::mem::or_abort(weld::representatives(&ends, tol));
     let mut vertex_of = vec![usize::MAX; ends.len()];
     let mut vertices = Vec::new();
     let mut vertex_end = Vec::new();

@@ -241,7 +241,7 @@ pub fn tessellate<R: Real, P: Borrow<PatchRecord<R>>>(
     grid: usize,
     weld_tolerance: R,
 ) -> Tessellation<R> {
-    or_abort(try_tessellate(patches, grid, weld_tolerance))
+    mem::or_abort(try_tessellate(patches, grid, weld_tolerance))
 }
 
 /// [`tessellate`], every buffer reserved fallibly: a refused allocation is
@@ -254,19 +254,6 @@ pub fn try_tessellate<R: Real, P: Borrow<PatchRecord<R>>>(
     let raw = sample_all(patches, grid)?;
     let rep = weld::representatives(&raw.positions, weld_tolerance)?;
     assemble(raw, rep)
-}
-
-/// The value, or the abort a `Vec`'s growth makes when the system refuses
-/// an allocation (for the functions whose signature has no error).
-fn or_abort<T>(r: Result<T, OutOfMemory>) -> T {
-    match r {
-        Ok(t) => t,
-        Err(e) => {
-            let layout = core::alloc::Layout::from_size_align(e.bytes, 1)
-                .unwrap_or(core::alloc::Layout::new::<u8>());
-            alloc::alloc::handle_alloc_error(layout)
-        }
-    }
 }
 
 /// [`tessellate`] of `patches`, welded where the samples of `guide` weld:
@@ -283,7 +270,7 @@ pub fn tessellate_guided<R: Real, S: Real, P: Borrow<PatchRecord<R>>, G: Borrow<
     guide_tolerance: S,
     fallback_tolerance: R,
 ) -> Tessellation<R> {
-    or_abort(try_tessellate_guided(
+    mem::or_abort(try_tessellate_guided(
         patches,
         guide,
         grid,

@@ -40,7 +40,7 @@ impl<R: Real> Raw<R> {
     /// An empty set for `grid` segments per side (its tables of a layout
     /// per kind of patch, a few KB, aborting if the system refuses them).
     pub fn new(grid: usize) -> Self {
-        super::or_abort(Self::try_new(grid))
+        mem::or_abort(Self::try_new(grid))
     }
 
     /// [`Self::new`], its tables reserved fallibly.
