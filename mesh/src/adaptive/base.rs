@@ -54,20 +54,14 @@ pub fn tagged_base(mesh: &MeshInput) -> Result<TaggedBase, OutOfMemory> {
     let nv = mesh.vertices.len();
     let faces: Vec<&[u32]> = mem::collect(mesh.faces.iter().map(|f| &f[..]))?;
     // Crease sharpness by vertex pair (smaller first), the last tag of a
-    // pair winning: sorted by pair, stably, then the last of each run kept.
-    let mut sharp: Vec<((u32, u32), f32)> = mem::collect(tags.creases.iter().map(|c| {
+    // pair winning: latest first, sorted by pair stably, the first of each
+    // pair kept.
+    let mut sharp: Vec<((u32, u32), f32)> = mem::collect(tags.creases.iter().rev().map(|c| {
         let [a, b] = c.vertices;
         ((a.min(b), a.max(b)), sanitize(c.sharpness))
     }))?;
     sharp.sort_by_key(|&(pair, _)| pair);
-    let mut kept = 0;
-    for i in 0..sharp.len() {
-        if i + 1 == sharp.len() || sharp[i + 1].0 != sharp[i].0 {
-            sharp[kept] = sharp[i];
-            kept += 1;
-        }
-    }
-    sharp.truncate(kept);
+    sharp.dedup_by_key(|&mut (pair, _)| pair);
     let sharpness_of = |a: u32, b: u32| match sharp.binary_search_by_key(&(a, b), |&(p, _)| p) {
         Ok(i) => sharp[i].1,
         Err(_) => 0.0,
@@ -231,4 +225,41 @@ fn clean_faces(
         (0..level.num_faces())
             .map(|f| !level.hole[f] && level.face(f).iter().all(|&v| vertex_clean[v as usize])),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tagged_base;
+    use crate::input::EdgeCrease;
+    use crate::samples;
+    use alloc::vec;
+
+    /// A vertex pair tagged more than once takes its last tag's sharpness,
+    /// whichever way round the pair is written, as OpenSubdiv's factory
+    /// takes it; other pairs keep their own.
+    #[test]
+    fn the_last_crease_tag_of_a_pair_wins() {
+        let mut mesh = samples::grid(3, 3);
+        let f = mesh.faces[4].clone();
+        let crease = |a: u32, b: u32, sharpness: f32| EdgeCrease {
+            vertices: [a, b],
+            sharpness,
+        };
+        mesh.tags.creases = vec![
+            crease(f[0], f[1], 1.0),
+            crease(f[1], f[2], 2.0),
+            crease(f[1], f[0], 3.0),
+            crease(f[0], f[1], 4.0),
+            crease(f[2], f[1], 5.0),
+        ];
+        let level = tagged_base(&mesh).unwrap().level;
+        let sharpness = |a: u32, b: u32| {
+            let mut edges = level.vertex_edges(a as usize).iter().copied();
+            let e = edges.find(|&e| level.other_end(e as usize, a) == b);
+            level.edge_sharpness[e.expect("an edge") as usize]
+        };
+        assert_eq!(sharpness(f[0], f[1]), 4.0);
+        assert_eq!(sharpness(f[1], f[2]), 5.0);
+        assert_eq!(sharpness(f[2], f[3]), 0.0);
+    }
 }
