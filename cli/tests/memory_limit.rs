@@ -9,12 +9,17 @@ use common::{polar_json, s, tempdir, write_json};
 use std::fmt::Write as _;
 use std::process::Command;
 
-/// Runs `script` (a `ulimit -v` and the command, under `sh`): exit status
-/// 2, nothing on stdout, one line `error: … out of memory …` on stderr
-/// (no panic, no backtrace though `RUST_BACKTRACE=1`), no `output`.
-fn runs_out_of_memory(script: &str, output: &std::path::Path) {
+/// Runs `capdiv ARGS -o OUTPUT` under `sh` with `ulimit -v LIMIT_KB`: exit
+/// status 2, nothing on stdout, one line `error: … out of memory …` on
+/// stderr (no panic, no backtrace though `RUST_BACKTRACE=1`), no `output`.
+fn runs_out_of_memory(limit_kb: u32, args: &str, output: &std::path::Path) {
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v {limit_kb} && exec '{bin}' {args} -o '{}'",
+        s(output)
+    );
     let out = Command::new("sh")
-        .args(["-c", script])
+        .args(["-c", &script])
         .env("RUST_BACKTRACE", "1")
         .output()
         .expect("run sh");
@@ -70,14 +75,12 @@ fn surface_out_of_memory_is_one_line_and_exit_2() {
     // machine's core count.
     std::fs::write(&input, triangle_torus(60)).unwrap();
     let output = dir.path().join("out.json");
-    let bin = env!("CARGO_BIN_EXE_capdiv");
-    let script = format!(
-        "ulimit -v 900000 && exec '{bin}' surface '{}' --depth 12 --tolerance none \
-         --max-patches 100000000 --threads 1 --format json --pretty -o '{}'",
-        s(&input),
-        s(&output)
+    let args = format!(
+        "surface '{}' --depth 12 --tolerance none --max-patches 100000000 --threads 1 \
+         --format json --pretty",
+        s(&input)
     );
-    runs_out_of_memory(&script, &output);
+    runs_out_of_memory(900_000, &args, &output);
 }
 
 /// A torus of `n × n` quads with every edge creased at `sharpness`, as OBJ
@@ -122,13 +125,8 @@ fn adaptive_refinement_out_of_memory_is_one_line_and_exit_2() {
     // from inside it.
     std::fs::write(&input, creased_quad_torus(40, 6.0)).unwrap();
     let output = dir.path().join("out.obj");
-    let bin = env!("CARGO_BIN_EXE_capdiv");
-    let script = format!(
-        "ulimit -v 400000 && exec '{bin}' surface '{}' --threads 1 --format obj -o '{}'",
-        s(&input),
-        s(&output)
-    );
-    runs_out_of_memory(&script, &output);
+    let args = format!("surface '{}' --threads 1 --format obj", s(&input));
+    runs_out_of_memory(400_000, &args, &output);
 }
 
 /// A valence-6 polar configuration (five links, a paraboloid) written to
@@ -157,12 +155,8 @@ fn streaming_weld_out_of_memory_is_one_line_and_exit_2() {
     // KB: the limit leaves room for the stream, not for the weld.
     let input = pole_file(dir.path());
     let output = dir.path().join("out.obj");
-    let bin = env!("CARGO_BIN_EXE_capdiv");
-    let script = format!(
-        "ulimit -v 80000 && exec '{bin}' patches --depth 13 --stream --format obj '{input}' -o '{}'",
-        s(&output)
-    );
-    runs_out_of_memory(&script, &output);
+    let args = format!("patches --depth 13 --stream --format obj '{input}'");
+    runs_out_of_memory(80_000, &args, &output);
 }
 
 #[test]
@@ -172,10 +166,6 @@ fn collected_tessellation_out_of_memory_is_one_line_and_exit_2() {
     // their collected tessellation (samples, weld, vertices) does not.
     let input = pole_file(dir.path());
     let output = dir.path().join("out.obj");
-    let bin = env!("CARGO_BIN_EXE_capdiv");
-    let script = format!(
-        "ulimit -v 100000 && exec '{bin}' patches --depth 12 --format obj '{input}' -o '{}'",
-        s(&output)
-    );
-    runs_out_of_memory(&script, &output);
+    let args = format!("patches --depth 12 --format obj '{input}'");
+    runs_out_of_memory(100_000, &args, &output);
 }
