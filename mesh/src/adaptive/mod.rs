@@ -354,7 +354,6 @@ fn final_hole(
 }
 
 /// A face of a level that the refinement has reached.
-#[derive(Clone)]
 struct Active {
     /// The face (of its level).
     face: u32,
