@@ -226,6 +226,12 @@ impl CliError {
         }
     }
 
+    /// [`CliError::out_of_memory`] for `source`, as a function of the
+    /// allocation's error (for `map_err`).
+    pub fn out_of_memory_in(source: &str) -> impl Fn(capdiv_mesh::OutOfMemory) -> Self + '_ {
+        move |e| CliError::out_of_memory(source, e.bytes)
+    }
+
     /// Attaches the input's name to a kernel error.
     pub fn kernel(source: &str, error: capdiv::Error) -> Self {
         CliError::Kernel {

@@ -28,9 +28,10 @@ use crate::raster::{downsample, ZBuffer};
 use crate::shape::{geometry_at, Shape};
 pub use crate::stripes::LightLines;
 use capdiv_mesh::shade::{diverging, symmetric_scale, HighlightLines};
-use capdiv_mesh::tessellate::Face;
+use capdiv_mesh::tessellate::{try_tessellate, Face};
 use capdiv_mesh::PatchRecord;
 use capdiv_mesh::PatchUv;
+use capdiv_mesh::{mem, OutOfMemory};
 
 /// What is drawn.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,8 +75,9 @@ const HOLE_UV: [f64; 2] = [-1.0, -1.0];
 /// patch side, hole edges fanned to the limit point), each corner with its
 /// patch and parameters (its patch's own `(u, v)` as texture coordinates,
 /// so the tessellation keeps every patch's vertices apart); the fans'
-/// corners belong to [`HOLE`].
-fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
+/// corners belong to [`HOLE`]. The error when the tessellation or the
+/// triangle list cannot be allocated.
+fn tessellate(shape: &Shape, grid: usize) -> Result<Vec<[Vert; 3]>, OutOfMemory> {
     let square = PatchUv {
         corners: [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
         hole: HOLE_UV,
@@ -87,8 +89,9 @@ fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
         };
         (record, k as u32)
     });
-    let t = capdiv_mesh::tessellate::tessellate(patches, grid, 0.0);
-    let mut tris = Vec::with_capacity(2 * t.faces.len());
+    let t = try_tessellate(patches, grid, 0.0)?;
+    // At most two triangles a face: the pushes stay within the reservation.
+    let mut tris = mem::with_capacity(2 * t.faces.len())?;
     for (face, &patch) in t.faces.iter().zip(&t.tags) {
         let hole = face.corners().iter().any(|&v| t.uvs[v as usize] == HOLE_UV);
         let vert = |v: u32| Vert {
@@ -104,7 +107,7 @@ fn tessellate(shape: &Shape, grid: usize) -> Vec<[Vert; 3]> {
             }
         }
     }
-    tris
+    Ok(tris)
 }
 
 /// What each supersample of a panel sees.
@@ -115,20 +118,24 @@ struct Hits {
 }
 
 /// Rasterises the shapes' tessellations into panels sharing one fit (the
-/// union of their screen extents, or the camera's focus).
-fn rasterise(shapes: &[&Shape], cam: &Camera) -> (Fit, Vec<Hits>) {
-    let tris: Vec<Vec<[Vert; 3]>> = shapes.iter().map(|s| tessellate(s, cam.grid)).collect();
+/// union of their screen extents, or the camera's focus). The error when
+/// a tessellation or a panel's buffers cannot be allocated.
+fn rasterise(shapes: &[&Shape], cam: &Camera) -> Result<(Fit, Vec<Hits>), OutOfMemory> {
+    let tris: Vec<Vec<[Vert; 3]>> = shapes
+        .iter()
+        .map(|s| tessellate(s, cam.grid))
+        .collect::<Result<_, _>>()?;
     let fit = Fit::new(cam, SS, tris.iter().flatten().flatten().map(|v| v.p));
     let (w, h) = (fit.w, fit.h);
     let screen = |p: V3| fit.screen(p);
     let hits = tris
         .iter()
         .map(|list| {
-            let mut z = ZBuffer::new(w, h);
+            let mut z = ZBuffer::new(w, h)?;
             let mut hits = Hits {
                 w,
-                patch: vec![NO_PATCH; w * h],
-                uv: vec![[0.0; 2]; w * h],
+                patch: mem::filled(w * h, NO_PATCH)?,
+                uv: mem::filled(w * h, [0.0; 2])?,
             };
             for t in list {
                 // A little overlap (1/8 supersample) closes rounding gaps between
@@ -142,10 +149,10 @@ fn rasterise(shapes: &[&Shape], cam: &Camera) -> (Fit, Vec<Hits>) {
                     hits.uv[k] = uv.map(|c| c.clamp(0.0, 1.0));
                 });
             }
-            hits
+            Ok(hits)
         })
-        .collect();
-    (fit, hits)
+        .collect::<Result<_, _>>()?;
+    Ok((fit, hits))
 }
 
 /// An RGB image, rows top to bottom.
@@ -165,14 +172,21 @@ pub struct Picture {
 }
 
 impl Picture {
-    fn new(width: usize, height: usize) -> Self {
-        Picture {
+    /// A picture of the background colour, or the error when its bytes
+    /// cannot be allocated.
+    fn new(width: usize, height: usize) -> Result<Self, OutOfMemory> {
+        let pixels = width.saturating_mul(height);
+        let mut rgb = mem::with_capacity(pixels.saturating_mul(3))?;
+        for _ in 0..pixels {
+            rgb.extend_from_slice(&BACKGROUND);
+        }
+        Ok(Picture {
             width,
             height,
-            rgb: BACKGROUND.repeat(width * height),
+            rgb,
             scale: None,
             patch_samples: Vec::new(),
-        }
+        })
     }
     fn put(&mut self, x: usize, y: usize, c: [u8; 3]) {
         if x < self.width && y < self.height {
@@ -205,60 +219,68 @@ pub struct Sample {
 
 /// What every supersample of every panel sees: per panel, row-major
 /// `(2·width) × (2·height)` entries, `None` for background, hole pixels and
-/// degenerate points — the numbers the pictures are made of.
-pub fn probe(shapes: &[&Shape], cam: &Camera) -> Vec<Vec<Option<Sample>>> {
-    samples_of(shapes, &rasterise(shapes, cam).1)
+/// degenerate points — the numbers the pictures are made of (or the error
+/// when they cannot be allocated).
+pub fn probe(shapes: &[&Shape], cam: &Camera) -> Result<Vec<Vec<Option<Sample>>>, OutOfMemory> {
+    samples_of(shapes, &rasterise(shapes, cam)?.1)
 }
 
-fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Vec<Vec<Option<Sample>>> {
+fn samples_of(shapes: &[&Shape], hits: &[Hits]) -> Result<Vec<Vec<Option<Sample>>>, OutOfMemory> {
     hits.iter()
         .zip(shapes)
         .map(|(hit, shape)| {
-            hit.patch
-                .iter()
-                .zip(&hit.uv)
-                .map(|(&p, uv)| {
-                    let sp = shape.patches.get(p as usize)?;
-                    let (point, normal, k, h) = geometry_at(sp.geometry(), uv[0], uv[1])?;
-                    Some(Sample {
-                        point,
-                        normal,
-                        k,
-                        h,
-                        level: sp.level,
-                    })
+            mem::collect(hit.patch.iter().zip(&hit.uv).map(|(&p, uv)| {
+                let sp = shape.patches.get(p as usize)?;
+                let (point, normal, k, h) = geometry_at(sp.geometry(), uv[0], uv[1])?;
+                Some(Sample {
+                    point,
+                    normal,
+                    k,
+                    h,
+                    level: sp.level,
                 })
-                .collect()
+            }))
         })
         .collect()
 }
 
 /// The light lines a highlight picture of `shapes` seen by `cam` uses
-/// ([`crate::stripes::family`] of the panels' fit).
+/// ([`crate::stripes::family`] of the panels' fit), or the error when the
+/// rasterisation that fits the panels cannot be allocated.
 pub fn highlight_lines(
     shapes: &[&Shape],
     cam: &Camera,
     light: &LightLines,
-) -> Option<HighlightLines> {
-    crate::stripes::family(light, &rasterise(shapes, cam).0)
+) -> Result<Option<HighlightLines>, OutOfMemory> {
+    Ok(crate::stripes::family(light, &rasterise(shapes, cam)?.0))
 }
 
 /// Draws `shapes` side by side, labelled when there are several (or
-/// `labels` is set), with one colour scale and one view.
-pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> Picture {
-    let (fit, hits) = rasterise(shapes, cam);
+/// `labels` is set), with one colour scale and one view; the error when a
+/// tessellation or a buffer of the picture (per supersample) cannot be
+/// allocated.
+pub fn draw(
+    shapes: &[&Shape],
+    cam: &Camera,
+    shading: Shading,
+    labels: bool,
+) -> Result<Picture, OutOfMemory> {
+    let (fit, hits) = rasterise(shapes, cam)?;
     let (right, up, toward) = (fit.frame.right, fit.frame.up, fit.frame.toward);
     let light = crate::camera::unit([0, 1, 2].map(|k| toward[k] + 0.4 * right[k] + 0.6 * up[k]))
         .unwrap_or(toward);
-    let samples = samples_of(shapes, &hits);
+    let samples = samples_of(shapes, &hits)?;
     let value = |s: &Sample| match shading {
         Shading::Gauss => s.k,
         _ => s.h,
     };
-    let scale = matches!(shading, Shading::Gauss | Shading::Mean).then(|| {
-        let all: Vec<f64> = samples.iter().flatten().flatten().map(value).collect();
-        symmetric_scale(&all, 0.98)
-    });
+    let scale = match shading {
+        Shading::Gauss | Shading::Mean => {
+            let all = mem::collect(samples.iter().flatten().flatten().map(value))?;
+            Some(symmetric_scale(&all, 0.98))
+        }
+        _ => None,
+    };
     // Per panel, each supersample's stripe intensity.
     let stripes: Vec<Vec<f64>> = match shading {
         Shading::Highlight(opts) => {
@@ -266,13 +288,14 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
             hits.iter()
                 .zip(&samples)
                 .map(|(hit, samples)| {
-                    let params: Vec<Option<f64>> = samples
-                        .iter()
-                        .map(|s| lines?.parameter(s.as_ref()?.point, s.as_ref()?.normal))
-                        .collect();
+                    let params = mem::collect(
+                        samples
+                            .iter()
+                            .map(|s| lines?.parameter(s.as_ref()?.point, s.as_ref()?.normal)),
+                    )?;
                     crate::stripes::intensities(&params, hit.w, SS)
                 })
-                .collect()
+                .collect::<Result<_, _>>()?
         }
         _ => Vec::new(),
     };
@@ -285,7 +308,7 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     let gap = 8;
     let n = shapes.len().max(1);
     let width = n * cam.width + (n - 1) * gap;
-    let mut pic = Picture::new(width, top + cam.height + bottom);
+    let mut pic = Picture::new(width, top + cam.height + bottom)?;
     pic.scale = scale;
     pic.patch_samples = hits
         .iter()
@@ -299,8 +322,8 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     for (panel, (hit, samples)) in hits.iter().zip(&samples).enumerate() {
         let stripes = stripes.get(panel);
         let x0 = panel * (cam.width + gap);
-        let color: Vec<[f64; 3]> = (0..hit.patch.len())
-            .map(|k| match (hit.patch[k], &samples[k]) {
+        let color = mem::collect((0..hit.patch.len()).map(|k| {
+            match (hit.patch[k], &samples[k]) {
                 (NO_PATCH, _) => BACKGROUND.map(f64::from),
                 (HOLE, _) => {
                     // Hatched by output pixel.
@@ -334,9 +357,9 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
                         }
                     }
                 }
-            })
-            .collect();
-        let rgb = downsample(&color, hit.w, cam.width, cam.height, SS);
+            }
+        }))?;
+        let rgb = downsample(&color, hit.w, cam.width, cam.height, SS)?;
         for (i, c) in rgb.chunks(3).enumerate() {
             let (x, y) = (i % cam.width.max(1), i / cam.width.max(1));
             pic.put(x0 + x, top + y, [c[0], c[1], c[2]]);
@@ -351,7 +374,7 @@ pub fn draw(shapes: &[&Shape], cam: &Camera, shading: Shading, labels: bool) -> 
     if let Some(m) = scale {
         legend(&mut pic, top + cam.height, m, shading);
     }
-    pic
+    Ok(pic)
 }
 
 /// What the sign of a curvature map's value means, as its legend states it.

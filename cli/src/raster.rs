@@ -5,6 +5,8 @@
 //! interpolated normals in [`crate::render`], the exact patch geometry in
 //! [`crate::picture`]).
 
+use capdiv_mesh::{mem, OutOfMemory};
+
 /// A screen point: `x`, `y` in pixels (`y` down), depth (larger = nearer).
 pub type Screen = [f64; 3];
 
@@ -16,13 +18,14 @@ pub struct ZBuffer {
 }
 
 impl ZBuffer {
-    /// An empty buffer: every pixel infinitely far.
-    pub fn new(w: usize, h: usize) -> Self {
-        ZBuffer {
+    /// An empty buffer: every pixel infinitely far; the error when its
+    /// `8·w·h` bytes cannot be allocated.
+    pub fn new(w: usize, h: usize) -> Result<Self, OutOfMemory> {
+        Ok(ZBuffer {
             w,
             h,
-            depth: vec![f64::NEG_INFINITY; w * h],
-        }
+            depth: mem::filled(w.saturating_mul(h), f64::NEG_INFINITY)?,
+        })
     }
 
     /// Draws triangle `s`: every pixel whose centre lies in it (or within
@@ -88,9 +91,16 @@ pub fn drawable(s: &[Screen; 3]) -> bool {
 
 /// The mean of each `ss × ss` block of the top left `(w·ss) × (h·ss)`
 /// pixels of a supersampled colour buffer `stride` pixels wide, rounded to 8
-/// bits: `3·w·h` bytes, rows top to bottom.
-pub fn downsample(color: &[[f64; 3]], stride: usize, w: usize, h: usize, ss: usize) -> Vec<u8> {
-    let mut rgb = Vec::with_capacity(3 * w * h);
+/// bits: `3·w·h` bytes, rows top to bottom (or the error when they cannot
+/// be allocated).
+pub fn downsample(
+    color: &[[f64; 3]],
+    stride: usize,
+    w: usize,
+    h: usize,
+    ss: usize,
+) -> Result<Vec<u8>, OutOfMemory> {
+    let mut rgb = mem::with_capacity(w.saturating_mul(h).saturating_mul(3))?;
     for y in 0..h {
         for x in 0..w {
             let mut acc = [0.0; 3];
@@ -105,5 +115,5 @@ pub fn downsample(color: &[[f64; 3]], stride: usize, w: usize, h: usize, ss: usi
             rgb.extend(acc.map(|c| (c / (ss * ss) as f64).round().clamp(0.0, 255.0) as u8));
         }
     }
-    rgb
+    Ok(rgb)
 }

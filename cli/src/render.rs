@@ -15,6 +15,7 @@ use crate::camera::{cross, dot, unit, Camera, Up, V3};
 use crate::raster::{area, downsample, drawable, ZBuffer};
 use crate::Scalar;
 use capdiv_mesh::tessellate::{Face, Tessellation};
+use capdiv_mesh::{mem, OutOfMemory};
 
 /// Camera and image size.
 #[derive(Clone, Copy, Debug)]
@@ -73,12 +74,14 @@ pub const MIN_LINE_PATCH: f64 = 8.0;
 pub const BACKGROUND: [u8; 3] = [246, 246, 246];
 
 /// Renders `mesh` as seen from `view`; with `params`, per vertex the
-/// parameters `(u, v)` of its patch, patch boundaries are drawn.
+/// parameters `(u, v)` of its patch, patch boundaries are drawn. The error
+/// when a buffer (per vertex of `mesh`, or per supersample of the image)
+/// cannot be allocated.
 pub fn render<R: Scalar>(
     mesh: &Tessellation<R>,
     params: Option<&[[f64; 2]]>,
     view: &View,
-) -> Image {
+) -> Result<Image, OutOfMemory> {
     const SS: usize = 2;
     let (w, h) = (view.width.max(1) * SS, view.height.max(1) * SS);
     // `toward`: from the scene to the camera; `right`, `up`: screen axes.
@@ -97,21 +100,13 @@ pub fn render<R: Scalar>(
     ])
     .unwrap_or(toward);
 
-    let pos: Vec<V3> = mesh
-        .positions
-        .iter()
-        .map(|p| p.0.map(|c| c.to_f64()))
-        .collect();
-    let nrm: Vec<V3> = mesh
-        .normals
-        .iter()
-        .map(|p| p.0.map(|c| c.to_f64()))
-        .collect();
+    let pos: Vec<V3> = mem::collect(mesh.positions.iter().map(|p| p.0.map(|c| c.to_f64())))?;
+    let nrm: Vec<V3> = mem::collect(mesh.normals.iter().map(|p| p.0.map(|c| c.to_f64())))?;
     // Screen coordinates before fitting, and depth (larger = nearer).
-    let proj: Vec<V3> = pos
-        .iter()
-        .map(|&p| [dot(p, right), dot(p, up), dot(p, toward)])
-        .collect();
+    let proj: Vec<V3> = mem::collect(
+        pos.iter()
+            .map(|&p| [dot(p, right), dot(p, up), dot(p, toward)]),
+    )?;
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in proj.iter().filter(|p| p.iter().all(|c| c.is_finite())) {
         for k in 0..2 {
@@ -126,19 +121,16 @@ pub fn render<R: Scalar>(
         0.5 * (w as f64 - scale * span[0]),
         0.5 * (h as f64 - scale * span[1]),
     ];
-    let screen: Vec<V3> = proj
-        .iter()
-        .map(|p| {
-            [
-                off[0] + (p[0] - lo[0]) * scale,
-                h as f64 - (off[1] + (p[1] - lo[1]) * scale),
-                p[2],
-            ]
-        })
-        .collect();
+    let screen: Vec<V3> = mem::collect(proj.iter().map(|p| {
+        [
+            off[0] + (p[0] - lo[0]) * scale,
+            h as f64 - (off[1] + (p[1] - lo[1]) * scale),
+            p[2],
+        ]
+    }))?;
 
-    let mut z = ZBuffer::new(w, h);
-    let mut color = vec![BACKGROUND.map(f64::from); w * h];
+    let mut z = ZBuffer::new(w, h)?;
+    let mut color = mem::filled(w * h, BACKGROUND.map(f64::from))?;
     for (f, &tag) in mesh.faces.iter().zip(&mesh.tags) {
         let base = if tag % 2 == 0 { EVEN } else { ODD }.map(f64::from);
         let tris = match *f {
@@ -203,14 +195,14 @@ pub fn render<R: Scalar>(
     }
 
     let (ow, oh) = (w / SS, h / SS);
-    let rgb = downsample(&color, w, ow, oh, SS);
+    let rgb = downsample(&color, w, ow, oh, SS)?;
     let mut image = Image {
         width: ow,
         height: oh,
         rgb,
     };
     ring_legend(&mut image);
-    image
+    Ok(image)
 }
 
 /// The ring colours' legend along the bottom margin: a swatch and a text per

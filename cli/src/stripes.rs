@@ -118,8 +118,13 @@ pub fn filtered(s: f64, footprint: f64, width: f64) -> f64 {
 /// length of the parameter's change per sample: in `x` the smaller change
 /// to the left or right neighbour, in `y` to the one above or below
 /// (one-sided where a neighbour has none, and the smaller of two, so that
-/// silhouettes do not blur).
-pub fn intensities(params: &[Option<f64>], w: usize, ss: usize) -> Vec<f64> {
+/// silhouettes do not blur). The error when the intensities cannot be
+/// allocated.
+pub fn intensities(
+    params: &[Option<f64>],
+    w: usize,
+    ss: usize,
+) -> Result<Vec<f64>, capdiv_mesh::OutOfMemory> {
     let h = params.len().checked_div(w).unwrap_or(0);
     let at = |x: isize, y: isize| -> Option<f64> {
         if x < 0 || y < 0 || x as usize >= w || y as usize >= h {
@@ -135,15 +140,11 @@ pub fn intensities(params: &[Option<f64>], w: usize, ss: usize) -> Vec<f64> {
             .fold(None, |m: Option<f64>, d| Some(m.map_or(d, |m| m.min(d))))
             .unwrap_or(0.0)
     };
-    params
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let Some(s) = *p else { return 0.0 };
-            let (x, y) = ((k % w) as isize, (k / w) as isize);
-            let fx = change(s, at(x - 1, y), at(x + 1, y));
-            let fy = change(s, at(x, y - 1), at(x, y + 1));
-            filtered(s, ss as f64 * fx.hypot(fy), STRIPE_WIDTH)
-        })
-        .collect()
+    capdiv_mesh::mem::collect(params.iter().enumerate().map(|(k, p)| {
+        let Some(s) = *p else { return 0.0 };
+        let (x, y) = ((k % w) as isize, (k / w) as isize);
+        let fx = change(s, at(x - 1, y), at(x + 1, y));
+        let fy = change(s, at(x, y - 1), at(x, y + 1));
+        filtered(s, ss as f64 * fx.hypot(fy), STRIPE_WIDTH)
+    }))
 }

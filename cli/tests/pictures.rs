@@ -188,8 +188,8 @@ fn highlight_stripes_on_a_tall_cylinder_are_resolved_not_aliased() {
         lines,
         ..LightLines::default()
     };
-    let family = highlight_lines(&[&shape], &cam, &light).unwrap();
-    let samples = &probe(&[&shape], &cam)[0];
+    let family = highlight_lines(&[&shape], &cam, &light).unwrap().unwrap();
+    let samples = &probe(&[&shape], &cam).unwrap()[0];
     let w = 2 * cam.width;
     let naive: Vec<f64> = rows
         .map(|y| {

@@ -60,8 +60,8 @@ fn highlight_stripes_of_a_plane_are_straight_and_evenly_spaced() {
     };
     for (input, scheme) in cases {
         let shape = build("plane", &input, Some(scheme), 3).unwrap();
-        let samples = probe(&[&shape], &cam);
-        let lines = highlight_lines(&[&shape], &cam, &light).unwrap();
+        let samples = probe(&[&shape], &cam).unwrap();
+        let lines = highlight_lines(&[&shape], &cam, &light).unwrap().unwrap();
         let px = &samples[0];
         let w = 2 * cam.width;
         let mut pts = Vec::new();

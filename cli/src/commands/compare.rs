@@ -44,7 +44,7 @@ pub fn run(args: &CompareArgs) -> Result<Outcome, CliError> {
     }
     let report = same_surfaces(&shapes);
     let refs: Vec<&Shape> = shapes.iter().collect();
-    let pic = draw(&refs, &cam, shading, true);
+    let pic = draw(&refs, &cam, shading, true).map_err(CliError::out_of_memory_in(&name))?;
     let mut outcome = Outcome::new(png_bytes(&pic)?, Sink::File(args.picture.output.clone()));
     outcome.report = report + &hole_only(&pic, &args.picture);
     Ok(outcome)

@@ -132,7 +132,7 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
     let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
     let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
-    let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
+    let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -201,7 +201,7 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
     let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
     let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
-    let png = png_bytes(&drawn, Some(&drawn.uvs), Up::Z)?;
+    let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
     let files = write_files(
         dir,
@@ -279,10 +279,10 @@ fn one_mesh(
     let start = Instant::now();
     let surface = build::<f64>(name, mesh, MESH_DEPTH, &[], "f64")?;
     let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None)
-        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
+        .map_err(CliError::out_of_memory_in(name))?;
     let title = format!("capdiv demo: {name}, {what}");
     let obj = obj_text(&tess, &surface.summary, &title);
-    let png = png_bytes(&tess.mesh, None, Up::Z)?;
+    let png = png_bytes(name, &tess.mesh, None, Up::Z)?;
     let compute = start.elapsed();
     let obj_path = dir.join(format!("{name}.obj"));
     write_path(&obj_path, obj.as_bytes())?;

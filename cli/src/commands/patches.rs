@@ -139,7 +139,7 @@ where
         factor: f64,
     ) -> Result<Tessellation<R>, CliError> {
         try_tessellate(self.tess_patches(), grid, R::from_f64(factor * self.size))
-            .map_err(|e| CliError::out_of_memory(name, e.bytes))
+            .map_err(CliError::out_of_memory_in(name))
     }
 
     /// The tessellation with each patch's own parameters `(u, v)` as texture
@@ -164,7 +164,7 @@ where
             (record, tag)
         });
         try_tessellate(patches, grid, R::from_f64(factor * self.size))
-            .map_err(|e| CliError::out_of_memory(name, e.bytes))
+            .map_err(CliError::out_of_memory_in(name))
     }
 
     /// OBJ text of the welded tessellation `tess`.
@@ -346,15 +346,16 @@ where
         }
         PatchFormat::Png => {
             let tess = set.tessellate_with_parameters(name, grid, factor)?;
-            png_bytes(&tess, Some(&tess.uvs), Up::Z)?
+            png_bytes(name, &tess, Some(&tess.uvs), Up::Z)?
         }
     })
 }
 
-/// The default view of a tessellation, `up` pointing up, as PNG bytes;
-/// patch boundaries drawn where `params` gives each vertex's patch
-/// parameters ([`PatchSet::tessellate_with_parameters`]).
+/// The default view of a tessellation of input `name`, `up` pointing up,
+/// as PNG bytes; patch boundaries drawn where `params` gives each vertex's
+/// patch parameters ([`PatchSet::tessellate_with_parameters`]).
 pub fn png_bytes<R: Scalar>(
+    name: &str,
     tess: &Tessellation<R>,
     params: Option<&[[f64; 2]]>,
     up: Up,
@@ -363,7 +364,8 @@ pub fn png_bytes<R: Scalar>(
         up,
         ..View::default()
     };
-    encode_png(&render(tess, params, &view)).map_err(|e| CliError::Io {
+    let image = render(tess, params, &view).map_err(CliError::out_of_memory_in(name))?;
+    encode_png(&image).map_err(|e| CliError::Io {
         path: "<png encoder>".into(),
         message: e.to_string(),
     })

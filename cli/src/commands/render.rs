@@ -89,7 +89,7 @@ pub fn run(args: &RenderArgs) -> Result<Outcome, CliError> {
     drawable(&name, &shape, args.picture.depth)?;
     let (mut cam, shading) = camera(&args.picture);
     cam.focus = framed(&name, &input, &naming, &shape, &args.picture)?;
-    let pic = draw(&[&shape], &cam, shading, false);
+    let pic = draw(&[&shape], &cam, shading, false).map_err(CliError::out_of_memory_in(&name))?;
     let mut outcome = Outcome::new(png_bytes(&pic)?, Sink::File(args.picture.output.clone()));
     outcome.report = hole_only(&pic, &args.picture);
     Ok(outcome)

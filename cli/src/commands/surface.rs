@@ -245,7 +245,7 @@ fn produce<R: Scalar>(
                 _ => |p: &PatchRecord<_>| p.level,
             };
             let tess = tessellate_surface_tagged(&surface, mesh, grid, weld, guide.as_ref(), tag)
-                .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
+                .map_err(CliError::out_of_memory_in(name))?;
             let mut report = report(name, &surface.summary, Some(&tess.info), naming);
             let bytes = match format {
                 SurfaceFormat::Obj => {
@@ -256,7 +256,9 @@ fn produce<R: Scalar>(
                     );
                     obj_text(&tess, &surface.summary, &title).into_bytes()
                 }
-                SurfaceFormat::Png => super::patches::png_bytes(&tess.mesh, None, args.up.into())?,
+                SurfaceFormat::Png => {
+                    super::patches::png_bytes(name, &tess.mesh, None, args.up.into())?
+                }
                 _ => {
                     let groups = gltf::groups(&tess.mesh.tags, objects);
                     let doc = gltf::document(&tess.mesh, &groups);
@@ -407,9 +409,7 @@ pub fn build_with<R: Scalar>(
 ) -> Result<Surface<R>, CliError> {
     let mut sink = CollectSurface::new();
     let (summary, facevarying) = run_scheme::<R>(name, mesh, options, &mut sink)?;
-    let (patches, caps) = sink
-        .finish()
-        .map_err(|e| CliError::out_of_memory(name, e.bytes))?;
+    let (patches, caps) = sink.finish().map_err(CliError::out_of_memory_in(name))?;
     let uvs = match facevarying {
         Some(fv) => patches.iter().map(|p| fv.patch(p)).collect(),
         None => Vec::new(),
