@@ -11,6 +11,8 @@
 //!   reaches (docs/math/c2ps.md §1: level `m` has valence `n·2^m`);
 //! - [`commands`]: one module per subcommand, each producing its output in
 //!   memory;
+//! - [`json`]: JSON text, compact or re-indented, into fallibly growing
+//!   buffers, with lists serialised as they are made;
 //! - [`output`]: the serialisable output types and the all-or-nothing writers
 //!   (stdout, or a file written through a temporary file and a rename);
 //! - [`export`]: exchange formats of a whole surface (glTF 2.0, STEP);
@@ -41,6 +43,7 @@ pub mod export;
 pub mod focus;
 pub mod glyphs;
 pub mod input;
+pub mod json;
 pub mod net;
 pub mod output;
 pub mod picture;

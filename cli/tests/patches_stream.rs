@@ -7,7 +7,7 @@
 
 mod common;
 
-use capdiv_cli::output::indent;
+use capdiv_cli::json::indent;
 use common::*;
 use serde_json::Value;
 use std::io::Read;

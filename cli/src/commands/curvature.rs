@@ -16,7 +16,8 @@
 use super::Outcome;
 use crate::args::CurvatureArgs;
 use crate::error::CliError;
-use crate::output::{to_json, Sink};
+use crate::json::to_json;
+use crate::output::Sink;
 use crate::shape::{build, geometry_at, read_any, Limit, Shape};
 use serde::Serialize;
 

@@ -50,8 +50,9 @@ use crate::args::{FirstStepArg, PatchFormat, PatchesArgs, Precision};
 use crate::camera::Up;
 use crate::error::CliError;
 use crate::input::{EgInput, Input, PolarInput, Source};
+use crate::json::{indent, to_json, try_to_json, Lazy};
 use crate::net::{valence_after, HeapStorage};
-use crate::output::{indent, temporary_sibling, to_json, LeveledPatch, PatchOutput, Sink, Target};
+use crate::output::{temporary_sibling, LeveledPatch, PatchOutput, Sink, Target};
 use crate::render::{encode_png, render, View};
 use crate::table::Table;
 use crate::text::{count, sig};
@@ -332,12 +333,9 @@ where
     let factor = weld_factor(args.precision);
     Ok(match args.format() {
         PatchFormat::Json => {
-            let out: Vec<PatchOutput<R>> = set
-                .patches
-                .iter()
-                .map(|p| PatchOutput::new(p.level, &p.patch))
-                .collect();
-            to_json(&out, args.pretty)
+            // Serialised as they are made.
+            let out = Lazy(|| (set.patches.iter()).map(|p| PatchOutput::new(p.level, &p.patch)));
+            try_to_json(&out, args.pretty).map_err(CliError::out_of_memory_in(name))?
         }
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);

@@ -14,8 +14,9 @@ use super::Outcome;
 use crate::args::{PoleArgs, Precision};
 use crate::error::CliError;
 use crate::input::{Input, PolarInput, Source};
+use crate::json::to_json;
 use crate::net::HeapStorage;
-use crate::output::{to_json, EgPoleOutput, PoleOutput, Sink};
+use crate::output::{EgPoleOutput, PoleOutput, Sink};
 use crate::Scalar;
 use capdiv::PoleJet;
 

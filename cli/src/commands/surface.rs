@@ -26,9 +26,10 @@
 //!   counts, the shell, and for a closed shell the volume it encloses (Gauss
 //!   quadrature over the faces).
 //!
-//! `obj` (f64, a consistently oriented manifold input) and compact `json`
-//! are written as they are produced ([`super::surface_stream`]); the other
-//! outputs are built whole in memory first.
+//! `obj` (f64, a consistently oriented manifold input) and `json` (compact
+//! or pretty) of an input without UVs are written as they are produced
+//! ([`super::surface_stream`]); the other outputs are built whole in memory
+//! first.
 //!
 //! The summary is also printed as one block on stderr (unless `--quiet`),
 //! after the output has been written; exit status 0.
@@ -40,7 +41,8 @@ use crate::args::{
 use crate::error::{CliError, Naming};
 use crate::export::{gltf, step};
 use crate::input::{parse, Input, Source};
-use crate::output::{to_json, Sink};
+use crate::json::{try_to_json, Lazy};
+use crate::output::Sink;
 use crate::table::Table;
 use crate::text::{count, sig};
 use crate::Scalar;
@@ -212,18 +214,19 @@ fn produce<R: Scalar>(
     let format = args.format();
     Ok(match format {
         SurfaceFormat::Json => {
+            // The patches and caps are serialised as they are made.
             let out = SurfaceJson {
-                patches: surface
-                    .patches
-                    .iter()
-                    .enumerate()
-                    .map(|(k, p)| PatchJson::new(p).with_uv(surface.uvs.get(k)))
-                    .collect(),
-                caps: surface.caps.iter().map(CapJson::new).collect(),
+                patches: Lazy(|| {
+                    let uv = |k| surface.uvs.get(k);
+                    (surface.patches.iter().enumerate())
+                        .map(move |(k, p)| PatchJson::new(p).with_uv(uv(k)))
+                }),
+                caps: Lazy(|| surface.caps.iter().map(CapJson::new)),
                 summary: &surface.summary,
             };
             let report = report(name, &surface.summary, None, naming);
-            (to_json(&out, args.pretty), report)
+            let text = try_to_json(&out, args.pretty).map_err(CliError::out_of_memory_in(name))?;
+            (text, report)
         }
         SurfaceFormat::Step => {
             // f32 patches are joined where the f64 ones are (see
@@ -561,11 +564,13 @@ pub fn run_scheme<R: Scalar>(
     Ok((summary, facevarying))
 }
 
-/// `{"patches", "caps", "summary"}`.
+/// `{"patches", "caps", "summary"}`: the patches' and caps' arrays
+/// ([`Lazy`]) of [`PatchJson`] and [`CapJson`].
 #[derive(Serialize)]
-struct SurfaceJson<'a, R> {
-    patches: Vec<PatchJson<R>>,
-    caps: Vec<CapJson<R>>,
+#[serde(bound = "Lazy<P>: Serialize, Lazy<C>: Serialize")]
+struct SurfaceJson<'a, P, C> {
+    patches: Lazy<P>,
+    caps: Lazy<C>,
     summary: &'a Summary,
 }
 

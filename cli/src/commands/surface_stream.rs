@@ -6,13 +6,13 @@
 //! ([`super::surface`]): OBJ with the same vertices, normals and faces in
 //! the same order (faces follow their vertices instead of all coming last;
 //! the counts and closedness come as comments at the end), JSON byte for
-//! byte.
+//! byte, compact or `--pretty`.
 //!
 //! Collected instead: `--precision f32` OBJ (welded where the f64 surface
-//! welds, which needs both), a mesh that is not a consistently oriented
-//! manifold (the weld front relies on each edge having two sides),
-//! `--pretty` JSON, and the formats that need the whole surface (PNG, glTF,
-//! STEP).
+//! welds, which needs both), OBJ of a mesh that is not a consistently
+//! oriented manifold (the weld front relies on each edge having two sides),
+//! a mesh with UVs, and the formats that need the whole surface (PNG,
+//! glTF, STEP).
 
 use super::patches::StreamOut;
 use super::surface::{
@@ -22,11 +22,12 @@ use super::surface::{
 use super::Outcome;
 use crate::args::{SurfaceArgs, SurfaceFormat, SurfaceScheme};
 use crate::error::{CliError, Naming};
+use crate::json::{Indent, TryBytes};
 use crate::output::Sink;
 use crate::table::Table;
 use crate::text::{count, sig};
 use capdiv_mesh::tessellate::{MeshSink, ObjWriter, StreamTessellator};
-use capdiv_mesh::{CapRecord, MeshInput, PatchRecord, SurfaceSink, Topology};
+use capdiv_mesh::{mem, CapRecord, MeshInput, OutOfMemory, PatchRecord, SurfaceSink, Topology};
 use std::io::Write;
 use std::time::{Duration, Instant};
 
@@ -39,7 +40,7 @@ pub fn streams(args: &SurfaceArgs, mesh: &MeshInput) -> bool {
         return false;
     }
     match args.format() {
-        SurfaceFormat::Json => !args.pretty,
+        SurfaceFormat::Json => true,
         SurfaceFormat::Obj => args.precision == Precision::F64 && Topology::new(mesh).is_ok(),
         _ => false,
     }
@@ -212,40 +213,72 @@ pub fn obj(
     Ok(outcome)
 }
 
-/// Writes `{"patches": [...], "caps": [...], "summary": {...}}` compact, a
-/// patch at a time (caps, one per cap, are held for after the patches).
+/// Writes `{"patches": [...], "caps": [...], "summary": {...}}` a patch at
+/// a time, compact or (with `indent`) pretty: the compact text of each
+/// piece re-indented as it comes ([`Indent`]), the same text as the whole
+/// document's. Caps, one per cap, are held for after the patches.
 struct JsonStream<'a, R, W> {
     out: &'a mut W,
     patches: usize,
     caps: Vec<CapJson<R>>,
     error: Option<std::io::Error>,
+    /// The first allocation refused (the caps' list, or the indentation).
+    refused: Option<OutOfMemory>,
+    /// One patch's compact text, and its indented text.
     line: Vec<u8>,
+    indent: Option<(Indent, Vec<u8>)>,
+}
+
+impl<R: crate::Scalar, W: Write> JsonStream<'_, R, W> {
+    /// Writes one piece of the compact document (indented when pretty).
+    fn write(&mut self, compact: &[u8]) {
+        let result = match &mut self.indent {
+            Some((indent, text)) => {
+                text.clear();
+                match indent.feed(compact, text) {
+                    Ok(()) => self.out.write_all(text),
+                    Err(e) => {
+                        self.refused = Some(e);
+                        return;
+                    }
+                }
+            }
+            None => self.out.write_all(compact),
+        };
+        if let Err(e) = result {
+            self.error = Some(e);
+        }
+    }
 }
 
 impl<R: crate::Scalar, W: Write> SurfaceSink<R> for JsonStream<'_, R, W> {
     fn patch(&mut self, p: &PatchRecord<R>) {
-        if self.error.is_some() {
+        if self.error.is_some() || self.refused.is_some() {
             return;
         }
-        self.line.clear();
-        self.line.extend_from_slice(if self.patches == 0 {
+        let mut line = std::mem::take(&mut self.line);
+        line.clear();
+        line.extend_from_slice(if self.patches == 0 {
             b"{\"patches\":["
         } else {
             b","
         });
         // Cannot fail: plain numbers and strings.
-        let _ = serde_json::to_writer(&mut self.line, &PatchJson::new(p));
+        let _ = serde_json::to_writer(&mut line, &PatchJson::new(p));
         self.patches += 1;
-        if let Err(e) = self.out.write_all(&self.line) {
-            self.error = Some(e);
-        }
+        self.write(&line);
+        self.line = line;
     }
     fn cap(&mut self, c: &CapRecord<R>) {
-        self.caps.push(CapJson::new(c));
+        if self.refused.is_none() {
+            if let Err(e) = mem::push(&mut self.caps, CapJson::new(c)) {
+                self.refused = Some(e);
+            }
+        }
     }
 }
 
-/// `--format json` (compact), f64 or f32, streamed.
+/// `--format json` (compact or `--pretty`), f64 or f32, streamed.
 pub fn json<R: crate::Scalar>(
     name: &str,
     naming: &Naming,
@@ -261,22 +294,36 @@ pub fn json<R: crate::Scalar>(
         patches: 0,
         caps: Vec::new(),
         error: None,
+        refused: None,
         line: Vec::new(),
+        indent: args.pretty.then(|| (Indent::default(), Vec::new())),
     };
     let mut opts = options(args, tables);
     opts.precision = precision;
     let (summary, _) = run_scheme::<R>(name, mesh, &opts, &mut sink)?;
+    let memory = CliError::out_of_memory_in(name);
+    if let Some(e) = sink.refused.take() {
+        return Err(memory(e));
+    }
     if let Some(e) = sink.error.take() {
         return Err(io(e));
     }
     let caps = std::mem::take(&mut sink.caps);
-    let mut tail = Vec::new();
-    tail.extend_from_slice(b"],\"caps\":");
+    let mut tail = TryBytes::default();
+    // Cannot fail but for the buffer: plain numbers and strings.
+    let _ = tail.write_all(b"],\"caps\":");
     let _ = serde_json::to_writer(&mut tail, &caps);
-    tail.extend_from_slice(b",\"summary\":");
+    let _ = tail.write_all(b",\"summary\":");
     let _ = serde_json::to_writer(&mut tail, &summary);
-    tail.extend_from_slice(b"}\n");
-    out.write_all(&tail).map_err(&io)?;
+    let _ = tail.write_all(b"}");
+    sink.write(&tail.into_result().map_err(&memory)?);
+    if let Some(e) = sink.refused.take() {
+        return Err(memory(e));
+    }
+    if let Some(e) = sink.error.take() {
+        return Err(io(e));
+    }
+    out.write_all(b"\n").map_err(&io)?;
     out.commit().map_err(&io)?;
     let mut outcome = Outcome::new(Vec::new(), Sink::Stdout);
     if !args.quiet {
