@@ -42,6 +42,14 @@ pub struct TryBytes {
 }
 
 impl TryBytes {
+    /// An empty buffer with room for `capacity` bytes.
+    pub fn with_capacity(capacity: usize) -> Result<Self, OutOfMemory> {
+        Ok(TryBytes {
+            bytes: mem::with_capacity(capacity)?,
+            refused: None,
+        })
+    }
+
     /// The bytes written, or the first refusal.
     pub fn into_result(self) -> Result<Vec<u8>, OutOfMemory> {
         match self.refused {

@@ -68,7 +68,7 @@ fn streamed_obj_is_the_collected_tessellation() {
         let surface =
             build_scheme::<f64>(name, &parsed, depth, &[], "f64", false, u64::MAX).unwrap();
         let tess = tessellate_surface(&surface, &parsed, grid as usize, WELD_F64, None).unwrap();
-        let collected = obj_text(&tess, &surface.summary, "title");
+        let collected = obj_text(&tess, &surface.summary, "title").unwrap();
 
         assert_eq!(
             pick(&streamed, &["v ", "vn "]),

@@ -68,6 +68,16 @@ pub fn reserve<T>(v: &mut Vec<T>, additional: usize) -> Result<(), OutOfMemory> 
         .map_err(|_| OutOfMemory::of::<T>(v.len().saturating_add(additional)))
 }
 
+/// Room for `additional` more bytes in `s` (growing as `push_str` does).
+#[inline]
+pub fn reserve_str(s: &mut alloc::string::String, additional: usize) -> Result<(), OutOfMemory> {
+    if s.capacity() - s.len() >= additional {
+        return Ok(());
+    }
+    s.try_reserve(additional)
+        .map_err(|_| OutOfMemory::of::<u8>(s.len().saturating_add(additional)))
+}
+
 /// Room for exactly `additional` more items in `v` (no growth margin).
 pub fn reserve_exact<T>(v: &mut Vec<T>, additional: usize) -> Result<(), OutOfMemory> {
     v.try_reserve_exact(additional)

@@ -131,7 +131,9 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
     let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
-    let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
+    let obj = set
+        .to_obj(&mesh, DEMO_GRID, WELD_F64, &title)
+        .map_err(CliError::out_of_memory_in(name))?;
     let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
     let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
@@ -200,7 +202,9 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let c0 = super::eg::dnet::<f64>(name, &input)?.c0().0;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
     let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
-    let obj = set.to_obj(&mesh, DEMO_GRID, WELD_F64, &title);
+    let obj = set
+        .to_obj(&mesh, DEMO_GRID, WELD_F64, &title)
+        .map_err(CliError::out_of_memory_in(name))?;
     let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
     let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
     let compute = start.elapsed();
@@ -282,7 +286,8 @@ fn one_mesh(
     let tess = tessellate_surface(&surface, mesh, MESH_GRID, WELD_F64, None)
         .map_err(CliError::out_of_memory_in(name))?;
     let title = format!("capdiv demo: {name}, {what}");
-    let obj = obj_text(&tess, &surface.summary, &title);
+    let obj =
+        obj_text(&tess, &surface.summary, &title).map_err(CliError::out_of_memory_in(name))?;
     let png = png_bytes(name, &tess.mesh, None, Up::Z)?;
     let compute = start.elapsed();
     let obj_path = dir.join(format!("{name}.obj"));

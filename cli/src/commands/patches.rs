@@ -59,7 +59,7 @@ use crate::text::{count, sig};
 use crate::Scalar;
 use capdiv::{FirstStep, OuterRegion, PolarStream, StreamOptions, TensorPatch};
 use capdiv_mesh::tessellate::{
-    ring_inner_edges, try_tessellate, write_obj, ObjWriter, PatchGeometry, RingLayout,
+    ring_inner_edges, try_tessellate, try_write_obj, ObjWriter, PatchGeometry, RingLayout,
     StreamTessellator, Tessellation,
 };
 use capdiv_mesh::{PatchKind, PatchRecord, PatchUv};
@@ -169,7 +169,13 @@ where
     }
 
     /// OBJ text of the welded tessellation `tess`.
-    pub fn to_obj(&self, tess: &Tessellation<R>, grid: usize, factor: f64, title: &str) -> String {
+    pub fn to_obj(
+        &self,
+        tess: &Tessellation<R>,
+        grid: usize,
+        factor: f64,
+        title: &str,
+    ) -> Result<String, capdiv_mesh::OutOfMemory> {
         let mut header = obj_header(title, self.describe(), grid, factor, self.size).to_vec();
         let triangles = tess.faces.iter().filter(|f| f.corners().len() == 3).count();
         header.push(counts_line(
@@ -177,7 +183,7 @@ where
             triangles,
             tess.faces.len() - triangles,
         ));
-        write_obj(tess, &header)
+        try_write_obj(tess, &header)
     }
 }
 
@@ -340,7 +346,9 @@ where
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);
             let tess = set.tessellate(name, grid, factor)?;
-            set.to_obj(&tess, grid, factor, &title).into_bytes()
+            set.to_obj(&tess, grid, factor, &title)
+                .map_err(CliError::out_of_memory_in(name))?
+                .into_bytes()
         }
         PatchFormat::Png => {
             let tess = set.tessellate_with_parameters(name, grid, factor)?;

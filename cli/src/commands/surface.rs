@@ -50,8 +50,8 @@ use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
 use capdiv_mesh::sinks::{CollectSurface, PatchCounts, SurfaceStats, Tee};
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, try_tessellate, try_tessellate_guided, write_obj, BadEdge, EdgeFault,
-    Face, Tessellation,
+    is_closed_and_oriented, try_tessellate, try_tessellate_guided, try_write_obj, BadEdge,
+    EdgeFault, Face, Tessellation,
 };
 use capdiv_mesh::{
     BoundedPlan, CapRecord, FaceVarying, MeshInput, OutOfMemory, PatchKind, PatchRecord, PatchUv,
@@ -257,14 +257,17 @@ fn produce<R: Scalar>(
                          {precision} {name}",
                         args.depth, args.tolerance
                     );
-                    obj_text(&tess, &surface.summary, &title).into_bytes()
+                    obj_text(&tess, &surface.summary, &title)
+                        .map_err(CliError::out_of_memory_in(name))?
+                        .into_bytes()
                 }
                 SurfaceFormat::Png => {
                     super::patches::png_bytes(name, &tess.mesh, None, args.up.into())?
                 }
                 _ => {
-                    let groups = gltf::groups(&tess.mesh.tags, objects);
-                    let doc = gltf::document(&tess.mesh, &groups);
+                    let memory = CliError::out_of_memory_in(name);
+                    let groups = gltf::groups(&tess.mesh.tags, objects).map_err(&memory)?;
+                    let doc = gltf::document(&tess.mesh, &groups).map_err(&memory)?;
                     let _ = writeln!(
                         report,
                         "  gltf         {}, {}, {}",
@@ -273,9 +276,9 @@ fn produce<R: Scalar>(
                         count(doc.triangles, "triangle", "triangles")
                     );
                     if format == SurfaceFormat::Glb {
-                        gltf::glb(&doc)
+                        gltf::glb(&doc).map_err(&memory)?
                     } else {
-                        gltf::gltf_text(&doc)
+                        gltf::gltf_text(&doc).map_err(&memory)?
                     }
                 }
             };
@@ -1043,7 +1046,11 @@ pub fn closed_text(closed: &Result<(), BadEdge>) -> String {
 }
 
 /// OBJ text with a header describing the surface.
-pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> String {
+pub fn obj_text<R: Scalar>(
+    tess: &Tess<R>,
+    summary: &Summary,
+    title: &str,
+) -> Result<String, OutOfMemory> {
     let i = &tess.info;
     let header = [
         title.to_string(),
@@ -1077,7 +1084,7 @@ pub fn obj_text<R: Scalar>(tess: &Tess<R>, summary: &Summary, title: &str) -> St
             closed_text(&i.closed)
         ),
     ];
-    write_obj(&tess.mesh, &header)
+    try_write_obj(&tess.mesh, &header)
 }
 
 /// The human-readable summary block (stderr); faces and vertices numbered

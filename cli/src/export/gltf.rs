@@ -18,10 +18,18 @@
 //! The document is built with the schema types of `gltf::json`; [`glb`] packs
 //! it in the binary container (§4.4, `gltf::binary::Glb`), [`gltf_text`]
 //! writes it as JSON with the buffer embedded as a base64 `data:` URI (§3.6.1).
+//!
+//! The groups' face lists, each group's vertices and indices, the buffer
+//! and the file's bytes are reserved through [`capdiv_mesh::mem`]: a
+//! refused allocation is an [`OutOfMemory`] error. The document's JSON
+//! entries (a view and an accessor per attribute, a mesh and a node per
+//! group) are the `gltf` crate's own lists, a few per object of the input.
 
+use crate::json::TryBytes;
 use base64::Engine;
 use capdiv::{Point3, Real};
 use capdiv_mesh::tessellate::{Face, Tessellation};
+use capdiv_mesh::{mem, OutOfMemory};
 use gltf::json;
 use json::validation::{Checked::Valid, USize64};
 use std::borrow::Cow;
@@ -52,7 +60,7 @@ pub struct Document {
 }
 
 /// The document of `t` with one node per group (empty groups are left out).
-pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Document {
+pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Result<Document, OutOfMemory> {
     let mut root = json::Root {
         asset: json::Asset {
             generator: Some("capdiv surface".into()),
@@ -81,10 +89,13 @@ pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Document {
     let mut nodes = Vec::new();
     let (mut vertices, mut triangles) = (0, 0);
     for g in groups {
-        let part = Part::of(t, &g.faces);
+        let part = Part::of(t, &g.faces)?;
         if part.indices.is_empty() {
             continue;
         }
+        // The part's attributes and indices: the pushes below stay within.
+        let floats = 3 * part.positions.len() + 3 * part.normals.len() + 2 * part.uvs.len();
+        mem::reserve(&mut bin, 4 * (floats + part.indices.len()))?;
         vertices += part.positions.len();
         triangles += part.indices.len() / 3;
         let (min, max) = bounds(&part.positions);
@@ -131,21 +142,29 @@ pub fn document<R: Real>(t: &Tessellation<R>, groups: &[Group]) -> Document {
         nodes,
     });
     root.scene = Some(scene);
-    Document {
+    Ok(Document {
         root,
         bin,
         vertices,
         triangles,
         nodes: count,
-    }
+    })
 }
 
-/// Binary glTF (§4.4): header, JSON chunk, BIN chunk.
-pub fn glb(doc: &Document) -> Vec<u8> {
-    let json = doc
-        .root
-        .to_vec()
-        .expect("glTF JSON of plain numbers and strings");
+/// The JSON text of `root`, or the error when it cannot be allocated.
+fn json_text(root: &json::Root, capacity: usize) -> Result<Vec<u8>, OutOfMemory> {
+    let mut text = TryBytes::with_capacity(capacity)?;
+    // Cannot fail but for the buffer: plain numbers and strings.
+    let _ = root.to_writer(&mut text);
+    text.into_result()
+}
+
+/// Binary glTF (§4.4): header, JSON chunk, BIN chunk; the error when its
+/// bytes cannot be allocated.
+pub fn glb(doc: &Document) -> Result<Vec<u8>, OutOfMemory> {
+    let json = json_text(&doc.root, 0)?;
+    // Header, two chunk headers, each chunk padded to four bytes.
+    let length = 12 + 8 + json.len().next_multiple_of(4) + 8 + doc.bin.len().next_multiple_of(4);
     let glb = gltf::binary::Glb {
         header: gltf::binary::Header {
             magic: *b"glTF",
@@ -155,18 +174,27 @@ pub fn glb(doc: &Document) -> Vec<u8> {
         json: Cow::Owned(json),
         bin: Some(Cow::Borrowed(&doc.bin)),
     };
-    glb.to_vec().expect("writing to memory")
+    let mut out = TryBytes::with_capacity(length)?;
+    // Cannot fail but for the buffer: a writer into memory.
+    let _ = glb.to_writer(&mut out);
+    out.into_result()
 }
 
-/// glTF JSON with the buffer embedded as `data:application/octet-stream;base64,…`.
-pub fn gltf_text(doc: &Document) -> Vec<u8> {
+/// glTF JSON with the buffer embedded as `data:application/octet-stream;base64,…`;
+/// the error when its text cannot be allocated.
+pub fn gltf_text(doc: &Document) -> Result<Vec<u8>, OutOfMemory> {
+    const PREFIX: &str = "data:application/octet-stream;base64,";
+    let base64 = base64::engine::general_purpose::STANDARD;
+    let encoded = base64::encoded_len(doc.bin.len(), true).unwrap_or(usize::MAX);
+    let mut uri = String::new();
+    let length = PREFIX.len().saturating_add(encoded);
+    uri.try_reserve_exact(length)
+        .map_err(|_| OutOfMemory { bytes: length })?;
+    uri.push_str(PREFIX);
+    base64.encode_string(&doc.bin, &mut uri);
     let mut root = doc.root.clone();
-    root.buffers[0].uri = Some(format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&doc.bin)
-    ));
-    root.to_vec()
-        .expect("glTF JSON of plain numbers and strings")
+    root.buffers[0].uri = Some(uri);
+    json_text(&root, length.saturating_add(4096))
 }
 
 /// One group's vertices and triangles, renumbered.
@@ -179,10 +207,20 @@ struct Part {
 }
 
 impl Part {
-    fn of<R: Real>(t: &Tessellation<R>, faces: &[usize]) -> Part {
-        let mut local = vec![u32::MAX; t.positions.len()];
-        let mut used: Vec<u32> = Vec::new();
-        let mut indices = Vec::new();
+    /// The part of `faces`, or the error when its lists cannot be allocated.
+    fn of<R: Real>(t: &Tessellation<R>, faces: &[usize]) -> Result<Part, OutOfMemory> {
+        let mut local = mem::filled(t.positions.len(), u32::MAX)?;
+        let triangles: usize = faces
+            .iter()
+            .map(|&f| match t.faces[f] {
+                Face::Tri(_) => 1,
+                Face::Quad(_) => 2,
+            })
+            .sum();
+        // Exactly `3·triangles` indices; at most as many vertices (fewer
+        // than the tessellation's): the pushes stay within.
+        let mut indices = mem::with_capacity(3 * triangles)?;
+        let mut used: Vec<u32> = mem::with_capacity((3 * triangles).min(t.positions.len()))?;
         for &f in faces {
             let tris: &[[usize; 3]] = match t.faces[f] {
                 Face::Tri(_) => &[[0, 1, 2]],
@@ -200,12 +238,12 @@ impl Part {
                 }
             }
         }
-        let positions: Vec<[f32; 3]> = used
-            .iter()
-            .map(|&v| t.positions[v as usize].0.map(|x| x.to_f64() as f32))
-            .collect();
+        let positions: Vec<[f32; 3]> = mem::collect(
+            used.iter()
+                .map(|&v| t.positions[v as usize].0.map(|x| x.to_f64() as f32)),
+        )?;
         // Area-weighted normals of the group's triangles, for vertices without one.
-        let mut fallback = vec![[0.0f64; 3]; used.len()];
+        let mut fallback = mem::filled(used.len(), [0.0f64; 3])?;
         for tri in indices.chunks_exact(3) {
             let p: [[f64; 3]; 3] =
                 core::array::from_fn(|k| positions[tri[k] as usize].map(f64::from));
@@ -217,32 +255,26 @@ impl Part {
                 }
             }
         }
-        let normals = used
-            .iter()
-            .zip(&fallback)
-            .map(|(&v, fb)| {
-                let n: Point3<R> = t.normals[v as usize];
-                unit(n.0.map(|x| x.to_f64()))
-                    .or_else(|| unit(*fb))
-                    .unwrap_or([0.0, 0.0, 1.0])
-            })
-            .collect();
+        let normals = mem::collect(used.iter().zip(&fallback).map(|(&v, fb)| {
+            let n: Point3<R> = t.normals[v as usize];
+            unit(n.0.map(|x| x.to_f64()))
+                .or_else(|| unit(*fb))
+                .unwrap_or([0.0, 0.0, 1.0])
+        }))?;
         let uvs = if t.uvs.is_empty() {
             Vec::new()
         } else {
-            used.iter()
-                .map(|&v| {
-                    let [u, w] = t.uvs.get(v as usize).copied().unwrap_or([0.0; 2]);
-                    [u as f32, (1.0 - w) as f32]
-                })
-                .collect()
+            mem::collect(used.iter().map(|&v| {
+                let [u, w] = t.uvs.get(v as usize).copied().unwrap_or([0.0; 2]);
+                [u as f32, (1.0 - w) as f32]
+            }))?
         };
-        Part {
+        Ok(Part {
             positions,
             normals,
             uvs,
             indices,
-        }
+        })
     }
 }
 
@@ -380,31 +412,34 @@ fn push_view(
 
 /// The groups of a tessellation whose face `k` lies in input face
 /// `input_face[k]`: one per object (in order, named), or a single unnamed
-/// group of every face when `objects` is empty.
-pub fn groups(input_face: &[u32], objects: &[capdiv_mesh::obj::ObjObject]) -> Vec<Group> {
+/// group of every face when `objects` is empty. The error when the lists
+/// cannot be allocated.
+pub fn groups(
+    input_face: &[u32],
+    objects: &[capdiv_mesh::obj::ObjObject],
+) -> Result<Vec<Group>, OutOfMemory> {
     if objects.is_empty() {
-        return vec![Group {
+        return Ok(vec![Group {
             name: None,
-            faces: (0..input_face.len()).collect(),
-        }];
+            faces: mem::collect(0..input_face.len())?,
+        }]);
     }
-    let mut of_face = BTreeMap::new();
+    // The object of each input face (a later object's wins).
+    const NONE: usize = usize::MAX;
+    let faces = objects.iter().map(|o| o.faces.end).max().unwrap_or(0);
+    let mut of_face = mem::filled(faces, NONE)?;
     for (k, o) in objects.iter().enumerate() {
-        for f in o.faces.clone() {
-            of_face.insert(f as u32, k);
+        of_face[o.faces.clone()].fill(k);
+    }
+    let mut out: Vec<Group> = mem::collect(objects.iter().map(|o| Group {
+        name: (!o.name.is_empty()).then(|| o.name.clone()),
+        faces: Vec::new(),
+    }))?;
+    for (k, &f) in input_face.iter().enumerate() {
+        match of_face.get(f as usize) {
+            Some(&g) if g != NONE => mem::push(&mut out[g].faces, k)?,
+            _ => {}
         }
     }
-    let mut out: Vec<Group> = objects
-        .iter()
-        .map(|o| Group {
-            name: (!o.name.is_empty()).then(|| o.name.clone()),
-            faces: Vec::new(),
-        })
-        .collect();
-    for (k, f) in input_face.iter().enumerate() {
-        if let Some(&g) = of_face.get(f) {
-            out[g].faces.push(k);
-        }
-    }
-    out
+    Ok(out)
 }

@@ -60,7 +60,7 @@ use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 use core::borrow::Borrow;
 
 pub use check::{closed_in_order, is_closed_and_oriented, BadEdge, EdgeFault};
-pub use obj::{write_number, write_obj, write_point};
+pub use obj::{try_write_obj, write_number, write_obj, write_point};
 pub use stream::{MeshSink, ObjWriter, StreamSummary, StreamTessellator, TessellatingSink};
 
 /// Edge `v = 0` of a patch's own square, `u` running from 0 to 1.

@@ -1,6 +1,7 @@
 //! Wavefront OBJ text of a [`Tessellation`].
 
 use super::Tessellation;
+use crate::mem::{reserve_str, OutOfMemory};
 use alloc::string::String;
 use capdiv::Real;
 use core::any::Any;
@@ -13,13 +14,38 @@ use core::fmt::{Display, LowerExp, Write};
 /// each vertex's `vn` and faces are written `f a/a/a b/b/b …`.
 /// Numbers as [`write_number`]: every digit needed to read them back
 /// exactly, no more.
+///
+/// Aborts, as a `Vec` does, when the text cannot be allocated:
+/// [`try_write_obj`] returns the error instead.
 pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[String]) -> String {
-    let mut text = String::with_capacity(t.positions.len() * 96 + t.faces.len() * 40);
+    crate::mem::or_abort(try_write_obj(t, header))
+}
+
+/// The most bytes one vertex's lines take: `v`, `vn` (a keyword and three
+/// numbers of at most 25 characters each: sign, 17 digits, point,
+/// exponent) and `vt`.
+const VERTEX_LINES: usize = 256;
+/// The most bytes one face's line takes (four corners `a/a/a` of at most
+/// ten digits each).
+const FACE_LINE: usize = 160;
+
+/// [`write_obj`], or the error when the text cannot be allocated: room for
+/// each line is reserved before it is written.
+pub fn try_write_obj<R: Real + Display + LowerExp>(
+    t: &Tessellation<R>,
+    header: &[String],
+) -> Result<String, OutOfMemory> {
+    let mut text = String::new();
+    let estimate =
+        (t.positions.len().saturating_mul(96)).saturating_add(t.faces.len().saturating_mul(40));
+    reserve_str(&mut text, estimate)?;
     for line in header {
+        reserve_str(&mut text, line.len() + 3)?;
         let _ = writeln!(text, "# {line}");
     }
     let with_uv = !t.uvs.is_empty();
     for (k, (p, n)) in t.positions.iter().zip(&t.normals).enumerate() {
+        reserve_str(&mut text, VERTEX_LINES)?;
         write_point(&mut text, "v", p.0);
         write_point(&mut text, "vn", n.0);
         if with_uv {
@@ -33,9 +59,10 @@ pub fn write_obj<R: Real + Display + LowerExp>(t: &Tessellation<R>, header: &[St
         }
     }
     for f in &t.faces {
+        reserve_str(&mut text, FACE_LINE)?;
         write_face(&mut text, f.corners(), with_uv);
     }
-    text
+    Ok(text)
 }
 
 /// `f a//a b//b c//c[ d//d]` (or `f a/a/a …` `with_uv`) and a newline: the
