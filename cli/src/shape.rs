@@ -34,7 +34,7 @@ use capdiv::{FirstStep, OuterRegion, Point3, PolarNet, PoleJet};
 use capdiv_mesh::rings::{catmull_clark_rings, RingError, RingOptions};
 use capdiv_mesh::sinks::CollectSurface;
 use capdiv_mesh::tessellate::{ring_edge_flags, PatchGeometry, RingLayout};
-use capdiv_mesh::{BoundedPlan, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme};
+use capdiv_mesh::{mem, BoundedPlan, MeshInput, PatchKind, PatchRecord, PlanOptions, Scheme};
 
 /// One patch of a [`Shape`].
 #[derive(Clone, Debug)]
@@ -244,32 +244,32 @@ impl PolarJob<'_> {
         };
         let hole_point = jet.limit().0;
         let outer = OuterRegion::new(pole, links).map_err(kernel)?;
-        let mut patches: Vec<ShapePatch> = outer
-            .patches()
-            .map(|p| {
-                ShapePatch::ring(
-                    PatchKind::C2ps,
-                    PatchGeometry::Cubic(p),
-                    0,
-                    false,
-                    (0, 0),
-                    hole_point,
-                )
-            })
-            .collect();
+        let memory = CliError::out_of_memory_in(self.name);
+        let mut patches: Vec<ShapePatch> = mem::collect(outer.patches().map(|p| {
+            ShapePatch::ring(
+                PatchKind::C2ps,
+                PatchGeometry::Cubic(p),
+                0,
+                false,
+                (0, 0),
+                hole_point,
+            )
+        }))
+        .map_err(&memory)?;
         for level in 0..=self.depth {
             if net.link_count() >= 5 {
                 let cols = net.valence();
                 for (k, p) in net.ring_patches().enumerate() {
                     let last = level == self.depth;
-                    patches.push(ShapePatch::ring(
+                    let patch = ShapePatch::ring(
                         PatchKind::C2ps,
                         PatchGeometry::Cubic(p),
                         level,
                         true,
                         ring_edge_flags(RingLayout::Polar, k, 2 * cols, last),
                         hole_point,
-                    ));
+                    );
+                    mem::push(&mut patches, patch).map_err(&memory)?;
                 }
             }
             if level < self.depth {
@@ -308,14 +308,15 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
     for level in 1..=depth {
         sub.step().map_err(kernel)?;
         for (k, p) in sub.ring_patches().enumerate() {
-            patches.push(ShapePatch::ring(
+            let patch = ShapePatch::ring(
                 PatchKind::Eg,
                 PatchGeometry::Quartic(p),
                 level,
                 true,
                 ring_edge_flags(RingLayout::Sectors, k, 0, level == depth),
                 hole_point,
-            ));
+            );
+            mem::push(&mut patches, patch).map_err(CliError::out_of_memory_in(name))?;
         }
     }
     Ok(Shape {
@@ -337,7 +338,8 @@ fn eg(name: &str, input: &EgInput, depth: u32) -> Result<Shape, CliError> {
 fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError> {
     // The kernel's own message for a malformed c-net.
     cnet::<f64>(name, input)?;
-    let nodes: Vec<[f64; 3]> = input.sectors.iter().flatten().copied().collect();
+    let nodes: Vec<[f64; 3]> = mem::collect(input.sectors.iter().flatten().copied())
+        .map_err(CliError::out_of_memory_in(name))?;
     let mut out = CollectSurface::new();
     catmull_clark_rings(input.center, &nodes, &RingOptions::new(depth), &mut out)
         .map_err(|e| ring_err(name, e))?;
@@ -348,15 +350,12 @@ fn cnet_cc(name: &str, input: &CnetInput, depth: u32) -> Result<Shape, CliError>
         Some(c) if c.limit.is_finite() => c.limit.0,
         _ => return Err(CliError::kernel(name, capdiv::Error::NonFinite)),
     };
-    let patches = out
-        .patches
-        .into_iter()
-        .map(|patch| ShapePatch {
-            level: patch.level,
-            patch,
-            ring: true,
-        })
-        .collect();
+    let patches = mem::collect(out.patches.into_iter().map(|patch| ShapePatch {
+        level: patch.level,
+        patch,
+        ring: true,
+    }))
+    .map_err(CliError::out_of_memory_in(name))?;
     Ok(Shape {
         scheme: "catmull-clark",
         label: "Catmull-Clark".into(),
@@ -430,9 +429,10 @@ fn mesh_shape(
     if let Some(e) = out.refused() {
         return Err(CliError::out_of_memory(name, e.bytes));
     }
+    let memory = CliError::out_of_memory_in(name);
     let followed: Vec<u32> = match out.caps.iter().find(|c| c.vertex == Some(0)) {
         Some(c) if keep.is_some() => vec![c.index],
-        _ => out.caps.iter().map(|c| c.index).collect(),
+        _ => mem::collect(out.caps.iter().map(|c| c.index)).map_err(&memory)?,
     };
     // A single C²PS cap: its pole curvature.
     let limit = match out.caps.as_slice() {
@@ -456,43 +456,40 @@ fn mesh_shape(
         .unwrap_or(0);
     let kept = |p: &&PatchRecord<f64>| keep.is_none_or(|k| (p.face as usize) < k);
     // The caps with a patch kept.
-    let caps: Vec<ShapeCap> = out
-        .caps
-        .iter()
-        .filter(|c| {
-            out.patches
-                .iter()
-                .filter(kept)
-                .any(|p| p.cap == Some(c.index))
-        })
-        .map(|c| ShapeCap {
-            vertex: c.vertex,
-            scheme: match c.scheme {
-                Scheme::C2ps => "C2PS",
-                Scheme::Eg => "EG",
-                Scheme::CatmullClark => "Catmull-Clark",
-            },
-            limit: c.limit.0,
-        })
-        .collect();
-    let patches = out
-        .patches
-        .iter()
-        .filter(kept)
-        .map(|p| {
-            let ring = p.cap.is_some_and(|c| followed.contains(&c));
-            let level = if ring {
-                p.level - first_level + 1
-            } else {
-                p.level
-            };
-            ShapePatch {
-                patch: p.clone(),
-                level,
-                ring,
-            }
-        })
-        .collect();
+    let caps: Vec<ShapeCap> = mem::collect(
+        (out.caps.iter())
+            .filter(|c| {
+                out.patches
+                    .iter()
+                    .filter(kept)
+                    .any(|p| p.cap == Some(c.index))
+            })
+            .map(|c| ShapeCap {
+                vertex: c.vertex,
+                scheme: match c.scheme {
+                    Scheme::C2ps => "C2PS",
+                    Scheme::Eg => "EG",
+                    Scheme::CatmullClark => "Catmull-Clark",
+                },
+                limit: c.limit.0,
+            }),
+    )
+    .map_err(&memory)?;
+    // The kept patches, moved out of the evaluator's list.
+    let patches = mem::collect(out.patches.into_iter().filter(|p| kept(&p)).map(|p| {
+        let ring = p.cap.is_some_and(|c| followed.contains(&c));
+        let level = if ring {
+            p.level - first_level + 1
+        } else {
+            p.level
+        };
+        ShapePatch {
+            patch: p,
+            level,
+            ring,
+        }
+    }))
+    .map_err(&memory)?;
     Ok(Shape {
         scheme: if catmull_clark {
             "catmull-clark"

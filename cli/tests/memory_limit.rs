@@ -176,3 +176,128 @@ fn collected_tessellation_out_of_memory_is_one_line_and_exit_2() {
     let args = format!("patches --depth 12 --format obj '{input}'");
     runs_out_of_memory(100_000, &args, &output);
 }
+
+/// How a run under a memory limit ended.
+#[derive(Debug, PartialEq)]
+enum Ending {
+    /// Exit 0, the output written.
+    Done,
+    /// Exit 2, one line `error: … out of memory …`, no output.
+    OutOfMemory,
+}
+
+/// Runs `capdiv ARGS -o OUTPUT` under `ulimit -v LIMIT_KB`; panics unless
+/// it succeeded (exit 0, `output` written) or failed as
+/// [`runs_out_of_memory`] checks (exit 2, one line, nothing on stdout, no
+/// `output`).
+fn run_under(limit_kb: u64, args: &str, output: &std::path::Path) -> Ending {
+    let _ = std::fs::remove_file(output);
+    let bin = env!("CARGO_BIN_EXE_capdiv");
+    let script = format!(
+        "ulimit -v {limit_kb} && exec '{bin}' {args} -o '{}'",
+        s(output)
+    );
+    let out = Command::new("sh")
+        .args(["-c", &script])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .expect("run sh");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let context = format!(
+        "under {limit_kb} KB, capdiv {args}: {:?}\n{stderr}",
+        out.status
+    );
+    match out.status.code() {
+        Some(0) => {
+            assert!(output.exists(), "{context}");
+            Ending::Done
+        }
+        Some(2) => {
+            let lines: Vec<&str> = stderr.lines().collect();
+            assert_eq!(lines.len(), 1, "{context}");
+            assert!(lines[0].starts_with("error: "), "{context}");
+            assert!(lines[0].contains("out of memory"), "{context}");
+            assert!(out.stdout.is_empty(), "{context}");
+            assert!(!output.exists(), "{context}");
+            Ending::OutOfMemory
+        }
+        _ => panic!("{context}"),
+    }
+}
+
+/// Under 32 memory limits evenly spaced from 32 MB to one the command fits
+/// in (found by doubling), `capdiv ARGS` either succeeds or fails as one
+/// line out of memory, never aborts; at least one limit refuses it. The
+/// refusals come from wherever the work has got to at that limit —
+/// reading, analysis, evaluation, tessellation, the exporter's own buffers
+/// — so every stage of the command is met by some limit.
+fn every_limit_succeeds_or_fails_as_one_line(args: &str, output: &std::path::Path) {
+    const LOW: u64 = 32 * 1024;
+    let mut high = 2 * LOW;
+    while run_under(high, args, output) == Ending::OutOfMemory {
+        high *= 2;
+        assert!(high <= 1 << 24, "capdiv {args} does not fit 16 GB");
+    }
+    let refused = (0..32)
+        .map(|k| LOW + (high - LOW) * k / 32)
+        .filter(|&limit| run_under(limit, args, output) == Ending::OutOfMemory)
+        .count();
+    assert!(refused > 0, "no limit refused capdiv {args}");
+}
+
+/// A triangle torus of 288 faces written to `dir`; its path. One thread:
+/// the evaluation threads' stacks would count against the limit by the
+/// machine's core count.
+fn small_torus(dir: &std::path::Path) -> String {
+    let input = dir.join("torus.obj");
+    std::fs::write(&input, triangle_torus(12)).unwrap();
+    s(&input).to_string()
+}
+
+#[test]
+fn surface_png_under_any_memory_limit_succeeds_or_fails_as_one_line() {
+    let dir = tempdir();
+    let input = small_torus(dir.path());
+    let args = format!("surface '{input}' --threads 1 --format png");
+    every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.png"));
+}
+
+#[test]
+fn surface_gltf_under_any_memory_limit_succeeds_or_fails_as_one_line() {
+    let dir = tempdir();
+    let input = small_torus(dir.path());
+    for format in ["glb", "gltf"] {
+        let args = format!("surface '{input}' --threads 1 --format {format}");
+        every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.glb"));
+    }
+}
+
+#[test]
+fn surface_f32_obj_under_any_memory_limit_succeeds_or_fails_as_one_line() {
+    let dir = tempdir();
+    let input = small_torus(dir.path());
+    let args = format!("surface '{input}' --threads 1 --precision f32 --format obj");
+    every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.obj"));
+}
+
+#[test]
+fn pictures_under_any_memory_limit_succeed_or_fail_as_one_line() {
+    let dir = tempdir();
+    let input = small_torus(dir.path());
+    for args in [
+        format!("render '{input}' --shade highlight"),
+        format!("compare '{input}' --shade mean"),
+    ] {
+        every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.png"));
+    }
+}
+
+#[test]
+fn patches_under_any_memory_limit_succeed_or_fail_as_one_line() {
+    let dir = tempdir();
+    let input = pole_file(dir.path());
+    for format in ["json --pretty", "obj", "png"] {
+        let args = format!("patches --depth 9 --format {format} '{input}'");
+        every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out"));
+    }
+}

@@ -50,7 +50,7 @@ use capdiv::Point3;
 use capdiv_mesh::obj::{looks_like_json, parse_obj_objects, ObjObject};
 use capdiv_mesh::sinks::{CollectSurface, PatchCounts, SurfaceStats, Tee};
 use capdiv_mesh::tessellate::{
-    is_closed_and_oriented, try_tessellate, try_tessellate_guided, try_write_obj, BadEdge,
+    try_closed_and_oriented, try_tessellate, try_tessellate_guided, try_write_obj, BadEdge,
     EdgeFault, Face, Tessellation,
 };
 use capdiv_mesh::{
@@ -999,28 +999,24 @@ pub fn tessellate_surface_tagged<R: Scalar>(
         triangles,
         quads: t.faces.len() - triangles,
         degenerate_dropped: t.degenerate_dropped,
-        closed: closed_through_seams(&t),
+        closed: closed_through_seams(&t)?,
         time_ms: start.elapsed().as_secs_f64() * 1e3,
     };
     Ok(Tess { mesh: t, info })
 }
 
-/// [`is_closed_and_oriented`] of the tessellation, UV seams joined (a seam
-/// splits vertices for the texture, not the surface).
-fn closed_through_seams<R>(t: &Tessellation<R>) -> Result<(), BadEdge> {
+/// [`try_closed_and_oriented`] of the tessellation, UV seams joined (a
+/// seam splits vertices for the texture, not the surface).
+fn closed_through_seams<R>(t: &Tessellation<R>) -> Result<Result<(), BadEdge>, OutOfMemory> {
     if t.seam_origin.is_empty() {
-        return is_closed_and_oriented(&t.faces);
+        return try_closed_and_oriented(&t.faces);
     }
     let origin = |i: &u32| t.seam_origin.get(*i as usize).copied().unwrap_or(*i);
-    let faces: Vec<Face> = t
-        .faces
-        .iter()
-        .map(|f| match f {
-            Face::Tri(c) => Face::Tri([origin(&c[0]), origin(&c[1]), origin(&c[2])]),
-            Face::Quad(c) => Face::Quad(c.each_ref().map(origin)),
-        })
-        .collect();
-    is_closed_and_oriented(&faces)
+    let faces: Vec<Face> = capdiv_mesh::mem::collect(t.faces.iter().map(|f| match f {
+        Face::Tri(c) => Face::Tri([origin(&c[0]), origin(&c[1]), origin(&c[2])]),
+        Face::Quad(c) => Face::Quad(c.each_ref().map(origin)),
+    }))?;
+    try_closed_and_oriented(&faces)
 }
 
 /// The closedness check in words.

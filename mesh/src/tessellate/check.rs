@@ -1,6 +1,7 @@
 //! Closedness and orientation of a polygon mesh.
 
 use super::Face;
+use crate::mem::{self, OutOfMemory};
 use alloc::vec::Vec;
 use hashbrown::HashMap;
 
@@ -92,10 +93,18 @@ pub fn closed_in_order(faces: &[Face]) -> Result<(), BadEdge> {
 /// faces, in opposite directions (a closed, consistently oriented mesh).
 /// Otherwise returns the offending edge that comes first in face order
 /// (faces in order, each face's edges `c[i] → c[i+1]` in order). Sorting,
-/// `O(E log E)`.
+/// `O(E log E)`. Aborts, as a `Vec` does, when its edge lists cannot be
+/// allocated: [`try_closed_and_oriented`] returns the error instead.
 pub fn is_closed_and_oriented(faces: &[Face]) -> Result<(), BadEdge> {
+    crate::mem::or_abort(try_closed_and_oriented(faces))
+}
+
+/// [`is_closed_and_oriented`], or the error when its edge lists (two
+/// entries per face corner) cannot be allocated.
+pub fn try_closed_and_oriented(faces: &[Face]) -> Result<Result<(), BadEdge>, OutOfMemory> {
     // Directed edges in face order; their sequence number is the position here.
-    let mut directed: Vec<(u32, u32, usize)> = Vec::new();
+    let corners = faces.iter().map(|f| f.corners().len()).sum();
+    let mut directed: Vec<(u32, u32, usize)> = mem::with_capacity(corners)?;
     for (f, face) in faces.iter().enumerate() {
         let c = face.corners();
         for i in 0..c.len() {
@@ -103,11 +112,8 @@ pub fn is_closed_and_oriented(faces: &[Face]) -> Result<(), BadEdge> {
         }
     }
     let key = |&(a, b, _): &(u32, u32, usize)| ((a.min(b) as u64) << 32) | a.max(b) as u64;
-    let mut sorted: Vec<(u64, u32)> = directed
-        .iter()
-        .enumerate()
-        .map(|(s, e)| (key(e), s as u32))
-        .collect();
+    let mut sorted: Vec<(u64, u32)> =
+        mem::collect(directed.iter().enumerate().map(|(s, e)| (key(e), s as u32)))?;
     sorted.sort_unstable();
 
     let mut first: Option<(u32, EdgeFault)> = None;
@@ -139,7 +145,7 @@ pub fn is_closed_and_oriented(faces: &[Face]) -> Result<(), BadEdge> {
         }
         g = h;
     }
-    match first {
+    Ok(match first {
         None => Ok(()),
         Some((s, fault)) => {
             let (from, to, face) = directed[s as usize];
@@ -150,5 +156,5 @@ pub fn is_closed_and_oriented(faces: &[Face]) -> Result<(), BadEdge> {
                 fault,
             })
         }
-    }
+    })
 }

@@ -59,7 +59,9 @@ use alloc::vec::Vec;
 use capdiv::{BicubicPatch, BiquarticPatch, Point3, Real};
 use core::borrow::Borrow;
 
-pub use check::{closed_in_order, is_closed_and_oriented, BadEdge, EdgeFault};
+pub use check::{
+    closed_in_order, is_closed_and_oriented, try_closed_and_oriented, BadEdge, EdgeFault,
+};
 pub use obj::{try_write_obj, write_number, write_obj, write_point};
 pub use stream::{MeshSink, ObjWriter, StreamSummary, StreamTessellator, TessellatingSink};
 
