@@ -9,7 +9,9 @@
 //! The analysis (topology, whole-mesh steps, the adaptive refinement with
 //! its levels, points and patches, the plan) and the tessellations (the
 //! streaming weld, [`crate::tessellate::StreamTessellator`], and
-//! [`crate::tessellate::try_tessellate`]) reserve this way; what they
+//! [`crate::tessellate::try_tessellate`]), the closedness check
+//! ([`crate::tessellate::try_closed_and_oriented`]) and the OBJ text
+//! ([`crate::tessellate::try_write_obj`]) reserve this way; what they
 //! allocate as it is has the size of one vertex's neighbourhood (a fan, a
 //! stencil row being built, a cap's c-net) or of one patch's layout.
 //! `tests/out_of_memory.rs` refuses each of their allocations of 4 KB or
