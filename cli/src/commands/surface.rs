@@ -233,7 +233,7 @@ fn produce<R: Scalar>(
             // `step::brep_guided`).
             let guide = f64_guide()?;
             let mut report = report(name, &surface.summary, None, naming);
-            let (text, line) = step_text(&surface, guide.as_ref(), mesh, name, args, precision);
+            let (text, line) = step_text(&surface, guide.as_ref(), mesh, name, args, precision)?;
             report.push_str(&line);
             (text.into_bytes(), report)
         }
@@ -290,7 +290,9 @@ fn produce<R: Scalar>(
 /// The STEP file of a surface ([`step`]; with a `guide`, the same surface
 /// in f64, joined where the guide's faces join) and its summary line
 /// `  step         F faces (P patches, H hole fills), E edges, V vertices;
-/// closed shell; volume X; T ms` (or `open shell (N free edges); T ms`).
+/// closed shell; volume X; T ms` (or `open shell (N free edges); T ms`);
+/// the one-line out-of-memory error when the B-rep or its text cannot be
+/// allocated.
 pub fn step_text<R: Scalar>(
     surface: &Surface<R>,
     guide: Option<&Surface<f64>>,
@@ -298,20 +300,22 @@ pub fn step_text<R: Scalar>(
     name: &str,
     args: &SurfaceArgs,
     precision: &str,
-) -> (String, String) {
+) -> Result<(String, String), CliError> {
+    let oom = CliError::out_of_memory_in(name);
     let start = Instant::now();
-    let faces = step::faces(&surface.patches);
+    let faces = step::faces(&surface.patches).map_err(&oom)?;
     let (tol, _) = weld_tolerance(mesh, WELD_F64);
     let size = step::model_size(&faces);
     let b = match guide {
         Some(g) => step::brep_guided(
             faces,
-            &step::faces(&g.patches),
+            &step::faces(&g.patches).map_err(&oom)?,
             tol,
             step::UNCERTAINTY * size,
         ),
         None => step::brep(faces, tol, step::UNCERTAINTY * size),
-    };
+    }
+    .map_err(&oom)?;
     let file_name = args
         .output
         .as_ref()
@@ -327,9 +331,9 @@ pub fn step_text<R: Scalar>(
             args.depth, args.tolerance, precision
         ),
     };
-    let text = step::write(&b, &header);
+    let text = step::write(&b, &header).map_err(&oom)?;
     let patches = surface.patches.len();
-    let shell = if b.is_closed() {
+    let shell = if b.is_closed().map_err(&oom)? {
         format!("closed shell; volume {}", step::volume(&b.faces))
     } else {
         format!(
@@ -346,7 +350,7 @@ pub fn step_text<R: Scalar>(
         count(b.vertices.len(), "vertex", "vertices"),
         start.elapsed().as_secs_f64() * 1e3
     );
-    (text, line)
+    Ok((text, line))
 }
 
 /// A surface: every patch and cap the evaluator gave, and the summary.

@@ -39,12 +39,16 @@
 //! - Units: one model unit is one millimetre (`SI_UNIT(.MILLI.,.METRE.)`);
 //!   the distance uncertainty is [`UNCERTAINTY`] × the model size. Numbers
 //!   are written exactly (shortest round-trip, [`write_number`]).
+//! - Memory: the export's lists (faces, boundary pieces, vertices, edges,
+//!   loops, instance numbers) and its text are reserved fallibly
+//!   ([`capdiv_mesh::mem`], `String::try_reserve`), and a refusal is an
+//!   [`OutOfMemory`] error, not an abort.
 
 use capdiv::{Point3, Real};
 use capdiv_mesh::tessellate::{weld, write_number, PatchGeometry};
-use capdiv_mesh::PatchRecord;
-use std::collections::BTreeMap;
-use std::fmt::Write;
+use capdiv_mesh::{mem, OutOfMemory, PatchRecord};
+use std::collections::HashMap;
+use std::fmt;
 
 /// Distance uncertainty written to the file, relative to the model size.
 pub const UNCERTAINTY: f64 = 1e-7;
@@ -96,89 +100,117 @@ impl Bezier {
     }
 
     /// From a patch's geometry.
-    pub fn of<R: Real>(g: &PatchGeometry<R>) -> Self {
-        fn net<R: Real, const K: usize>(p: &[[capdiv::Point3<R>; K]; K]) -> Vec<[f64; 3]> {
-            p.iter()
-                .flat_map(|row| row.iter().map(|q| q.0.map(|x| x.to_f64())))
-                .collect()
+    pub fn of<R: Real>(g: &PatchGeometry<R>) -> Result<Self, OutOfMemory> {
+        fn net<R: Real, const K: usize>(
+            p: &[[capdiv::Point3<R>; K]; K],
+        ) -> Result<Vec<[f64; 3]>, OutOfMemory> {
+            let mut net = mem::with_capacity(K * K)?;
+            net.extend(p.iter().flatten().map(|q| q.0.map(|x| x.to_f64())));
+            Ok(net)
         }
-        match g {
+        Ok(match g {
             PatchGeometry::Cubic(t) => Bezier {
                 degree: 3,
-                net: net(&t.points),
+                net: net(&t.points)?,
             },
             PatchGeometry::Quartic(t) => Bezier {
                 degree: 4,
-                net: net(&t.points),
+                net: net(&t.points)?,
             },
-        }
+        })
     }
 
     /// Control points of boundary edge `e`, in the loop's direction
     /// (counter-clockwise in `(u, v)`: `v = 0` with `u` rising, `u = 1` with
     /// `v` rising, `v = 1` with `u` falling, `u = 0` with `v` falling).
-    pub fn edge(&self, e: u8) -> Vec<[f64; 3]> {
+    pub fn edge(&self, e: u8) -> Result<Vec<[f64; 3]>, OutOfMemory> {
         let d = self.degree;
-        (0..=d)
-            .map(|k| match e & 3 {
-                0 => self.at(k, 0),
-                1 => self.at(d, k),
-                2 => self.at(d - k, d),
-                _ => self.at(0, d - k),
-            })
-            .collect()
+        mem::collect((0..=d).map(|k| match e & 3 {
+            0 => self.at(k, 0),
+            1 => self.at(d, k),
+            2 => self.at(d - k, d),
+            _ => self.at(0, d - k),
+        }))
     }
 
     /// The point and the partial derivatives at `(u, v)`.
     pub fn eval(&self, u: f64, v: f64) -> [[f64; 3]; 3] {
         let n = self.n();
-        // Each u-row (fixed i) evaluated in v, with its v-derivative.
-        let mut col = Vec::with_capacity(n);
-        let mut col_v = Vec::with_capacity(n);
-        for i in 0..n {
-            let row: Vec<[f64; 3]> = (0..n).map(|j| self.at(i, j)).collect();
-            let (p, dp) = curve_eval(&row, v);
-            col.push(p);
-            col_v.push(dp);
+        // Each u-row (fixed i, the net's `n` points from `n·i`) evaluated in
+        // v, with its v-derivative.
+        let (mut stack, mut heap);
+        let (col, col_v) = if n <= STACK {
+            stack = [[0.0; 3]; 2 * STACK];
+            stack.split_at_mut(STACK)
+        } else {
+            heap = vec![[0.0; 3]; 2 * n];
+            heap.split_at_mut(n)
+        };
+        for (i, row) in self.net.chunks_exact(n).take(n).enumerate() {
+            let (p, dp) = curve_eval(row, v);
+            col[i] = p;
+            col_v[i] = dp;
         }
-        let (p, pu) = curve_eval(&col, u);
-        let (pv, _) = curve_eval(&col_v, u);
+        let (p, pu) = curve_eval(&col[..n], u);
+        let (pv, _) = curve_eval(&col_v[..n], u);
         [p, pu, pv]
+    }
+}
+
+/// The most control points a curve's de Casteljau copy holds on the stack
+/// (degree 7; capdiv's patches have degree 3 or 4). Longer curves copy to
+/// the heap (infallibly, as they are never made here).
+const STACK: usize = 8;
+
+/// `f` on a working copy of `c` (on the stack when `c` has at most
+/// [`STACK`] points).
+fn on_copy<T>(c: &[[f64; 3]], f: impl FnOnce(&mut [[f64; 3]]) -> T) -> T {
+    if c.len() <= STACK {
+        let mut b = [[0.0; 3]; STACK];
+        b[..c.len()].copy_from_slice(c);
+        f(&mut b[..c.len()])
+    } else {
+        f(&mut c.to_vec())
     }
 }
 
 /// A Bézier curve's point and derivative at `t` (de Casteljau).
 pub fn curve_eval(c: &[[f64; 3]], t: f64) -> ([f64; 3], [f64; 3]) {
     let d = c.len() - 1;
-    let mut b = c.to_vec();
-    for r in (1..d).rev() {
-        for k in 0..=r {
-            b[k] = lerp(b[k], b[k + 1], t);
-        }
-    }
     if d == 0 {
         return (c[0], [0.0; 3]);
     }
-    let p = lerp(b[0], b[1], t);
-    let dp = (Point3(b[1]) - Point3(b[0])).0.map(|x| x * d as f64);
-    (p, dp)
+    on_copy(c, |b| {
+        for r in (1..d).rev() {
+            for k in 0..=r {
+                b[k] = lerp(b[k], b[k + 1], t);
+            }
+        }
+        let p = lerp(b[0], b[1], t);
+        let dp = (Point3(b[1]) - Point3(b[0])).0.map(|x| x * d as f64);
+        (p, dp)
+    })
 }
 
 /// The two halves of a Bézier curve split at `t = ½` (de Casteljau).
-pub fn split_half(c: &[[f64; 3]]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
-    let mut b = c.to_vec();
+#[allow(clippy::type_complexity)]
+pub fn split_half(c: &[[f64; 3]]) -> Result<(Vec<[f64; 3]>, Vec<[f64; 3]>), OutOfMemory> {
     let d = c.len() - 1;
-    let mut left = vec![b[0]];
-    let mut right = vec![b[d]];
-    for r in (0..d).rev() {
-        for k in 0..=r {
-            b[k] = lerp(b[k], b[k + 1], 0.5);
-        }
+    let mut left = mem::with_capacity(d + 1)?;
+    let mut right = mem::with_capacity(d + 1)?;
+    on_copy(c, |b| {
         left.push(b[0]);
-        right.push(b[r]);
-    }
+        right.push(b[d]);
+        for r in (0..d).rev() {
+            for k in 0..=r {
+                b[k] = lerp(b[k], b[k + 1], 0.5);
+            }
+            left.push(b[0]);
+            right.push(b[r]);
+        }
+    });
     right.reverse();
-    (left, right)
+    Ok((left, right))
 }
 
 fn lerp(a: [f64; 3], b: [f64; 3], t: f64) -> [f64; 3] {
@@ -191,30 +223,34 @@ fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 /// The faces of a surface: every patch in order, then one hole fill per
 /// hole edge (patch by patch, edge by edge).
-pub fn faces<R: Real>(patches: &[PatchRecord<R>]) -> Vec<StepFace> {
-    let mut out: Vec<StepFace> = patches
+pub fn faces<R: Real>(patches: &[PatchRecord<R>]) -> Result<Vec<StepFace>, OutOfMemory> {
+    let fills: usize = patches
         .iter()
-        .enumerate()
-        .map(|(k, p)| StepFace {
-            surface: Bezier::of(&p.geometry),
+        .map(|p| (p.hole & 15).count_ones() as usize)
+        .sum();
+    let mut out = mem::with_capacity(patches.len().saturating_add(fills))?;
+    for (k, p) in patches.iter().enumerate() {
+        out.push(StepFace {
+            surface: Bezier::of(&p.geometry)?,
             finer: p.finer & 15,
             kind: FaceKind::Patch(k),
-        })
-        .collect();
+        });
+    }
     for (k, p) in patches.iter().enumerate() {
         for e in 0..4u8 {
             if p.hole & (1 << e) != 0 {
-                let ring = Bezier::of(&p.geometry);
+                // The ring is face `k`.
+                let edge = out[k].surface.edge(e)?;
                 let limit = p.hole_point.0.map(|x| x.to_f64());
                 out.push(StepFace {
-                    surface: hole_fill(&ring.edge(e), limit),
+                    surface: hole_fill(&edge, limit)?,
                     finer: 0,
                     kind: FaceKind::HoleFill { patch: k, edge: e },
                 });
             }
         }
     }
-    out
+    Ok(out)
 }
 
 /// The ruled patch from a hole edge (control points in its ring patch's loop
@@ -222,9 +258,9 @@ pub fn faces<R: Real>(patches: &[PatchRecord<R>]) -> Vec<StepFace> {
 /// fill runs along the shared edge the other way, so it is oriented like
 /// the ring), row `v = j/d` is `(1 − j/d)·edge + (j/d)·limit` (the linear
 /// ruling degree-elevated), row `v = 1` is the limit point.
-pub fn hole_fill(edge: &[[f64; 3]], limit: [f64; 3]) -> Bezier {
+pub fn hole_fill(edge: &[[f64; 3]], limit: [f64; 3]) -> Result<Bezier, OutOfMemory> {
     let d = edge.len() - 1;
-    let mut net = Vec::with_capacity((d + 1) * (d + 1));
+    let mut net = mem::with_capacity((d + 1) * (d + 1))?;
     for i in 0..=d {
         let e = edge[d - i];
         for j in 0..=d {
@@ -235,7 +271,7 @@ pub fn hole_fill(edge: &[[f64; 3]], limit: [f64; 3]) -> Bezier {
             });
         }
     }
-    Bezier { degree: d, net }
+    Ok(Bezier { degree: d, net })
 }
 
 /// An edge of the B-rep: its curve runs from `start` to `end`.
@@ -277,9 +313,10 @@ pub struct Brep {
 }
 
 impl Brep {
-    /// Every edge has exactly two faces, running it in opposite directions.
-    pub fn is_closed(&self) -> bool {
-        let mut sense = vec![(0usize, 0usize); self.edges.len()];
+    /// Every edge has exactly two faces, running it in opposite directions
+    /// (or the error when the per-edge count cannot be allocated).
+    pub fn is_closed(&self) -> Result<bool, OutOfMemory> {
+        let mut sense = mem::filled(self.edges.len(), (0usize, 0usize))?;
         for l in &self.loops {
             for &(e, same) in l {
                 if same {
@@ -289,7 +326,7 @@ impl Brep {
                 }
             }
         }
-        !self.edges.is_empty() && sense.iter().all(|&s| s == (1, 1))
+        Ok(!self.edges.is_empty() && sense.iter().all(|&s| s == (1, 1)))
     }
 
     /// Edges with one face.
@@ -312,6 +349,17 @@ struct Piece {
     curve: Vec<[f64; 3]>,
 }
 
+impl Piece {
+    /// End `end` of the piece: 0 its start, 1 its end.
+    fn end(&self, end: usize) -> [f64; 3] {
+        if end == 0 {
+            self.curve[0]
+        } else {
+            self.curve[self.curve.len() - 1]
+        }
+    }
+}
+
 /// The point `(u, v)` of a face's square at parameter `s` of its edge `e`,
 /// `s` running in the loop's direction.
 fn edge_uv(e: u8, s: f64) -> [f64; 2] {
@@ -323,13 +371,19 @@ fn edge_uv(e: u8, s: f64) -> [f64; 2] {
     }
 }
 
+/// The number of boundary pieces of a face: 4, and one more per `finer`
+/// edge.
+fn piece_count(face: &StepFace) -> usize {
+    4 + (face.finer & 15).count_ones() as usize
+}
+
 /// The boundary pieces of `faces`, face by face, edge by edge (halves of a
 /// `finer` edge in order).
-fn pieces(faces: &[StepFace]) -> Vec<Piece> {
-    let mut out = Vec::new();
+fn pieces(faces: &[StepFace]) -> Result<Vec<Piece>, OutOfMemory> {
+    let mut out = mem::with_capacity(faces.iter().map(piece_count).sum())?;
     for (f, face) in faces.iter().enumerate() {
         for e in 0..4u8 {
-            let c = face.surface.edge(e);
+            let c = face.surface.edge(e)?;
             let piece = |span, curve| Piece {
                 face: f,
                 edge: e,
@@ -337,7 +391,7 @@ fn pieces(faces: &[StepFace]) -> Vec<Piece> {
                 curve,
             };
             if face.finer & (1 << e) != 0 {
-                let (a, b) = split_half(&c);
+                let (a, b) = split_half(&c)?;
                 out.push(piece([0.0, 0.5], a));
                 out.push(piece([0.5, 1.0], b));
             } else {
@@ -345,63 +399,96 @@ fn pieces(faces: &[StepFace]) -> Vec<Piece> {
             }
         }
     }
-    out
+    Ok(out)
 }
 
 /// The end points of `pieces`: `2k` the start and `2k + 1` the end of piece `k`.
-fn piece_ends(pieces: &[Piece]) -> Vec<[f64; 3]> {
-    pieces
-        .iter()
-        .flat_map(|p| [p.curve[0], p.curve[p.curve.len() - 1]])
-        .collect()
+fn piece_ends(pieces: &[Piece]) -> Result<Vec<capdiv::Point3<f64>>, OutOfMemory> {
+    let mut out = mem::with_capacity(pieces.len().saturating_mul(2))?;
+    out.extend(
+        pieces
+            .iter()
+            .flat_map(|p| [p.end(0), p.end(1)].map(capdiv::Point3)),
+    );
+    Ok(out)
 }
 
 /// Builds the topology of `faces`: boundary pieces (whole edges, or halves
 /// of the `finer` ones) whose end points weld within `tol` share vertices;
 /// pieces with the same two vertices and midpoints within `mid_tol` share an
 /// edge (each edge at most two faces); pieces whose control points all lie
-/// within `tol` of their start are collapsed.
-pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
-    let pieces = pieces(&faces);
-    let ends: Vec<capdiv::Point3<f64>> = piece_ends(&pieces)
-        .into_iter()
-        .map(capdiv::Point3)
-        .collect();
-    // (Built whole, bounded by `--max-patches`: a refused allocation
-    // aborts here, as a `Vec`'s growth does.)
-    let rep = capdiv_mesh::mem::or_abort(weld::representatives(&ends, tol));
-    let mut vertex_of = vec![usize::MAX; ends.len()];
-    let mut vertices = Vec::new();
-    let mut vertex_end = Vec::new();
+/// within `tol` of their start are collapsed. The error when a list of the
+/// B-rep cannot be allocated.
+pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Result<Brep, OutOfMemory> {
+    let mut b = topology(&faces, tol, mid_tol)?;
+    b.faces = faces;
+    Ok(b)
+}
+
+/// [`brep`] of `faces` but for its face list (left empty).
+fn topology(faces: &[StepFace], tol: f64, mid_tol: f64) -> Result<Brep, OutOfMemory> {
+    let pieces = pieces(faces)?;
+    let ends = piece_ends(&pieces)?;
+    let rep = weld::representatives(&ends, tol)?;
+    // A class's representative is its first point: one vertex each.
+    let classes = (rep.iter().enumerate())
+        .filter(|&(k, &r)| r as usize == k)
+        .count();
+    let mut vertex_of = mem::filled(ends.len(), usize::MAX)?;
+    let mut vertices = mem::with_capacity(classes)?;
+    let mut vertex_end = mem::with_capacity(classes)?;
     for k in 0..ends.len() {
         let r = rep[k] as usize;
         if vertex_of[r] == usize::MAX {
             vertex_of[r] = vertices.len();
-            vertices.push(ends[r].0);
-            vertex_end.push(r);
+            mem::push(&mut vertices, ends[r].0)?;
+            mem::push(&mut vertex_end, r)?;
         }
         vertex_of[k] = vertex_of[r];
     }
+    drop(ends);
     let mut edges: Vec<Edge> = Vec::new();
-    let mut by_ends: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
-    let mut loops = vec![Vec::new(); faces.len()];
+    // The edges with the same two vertices, in the order made: the first
+    // and the last per vertex pair, and per edge the next one (`usize::MAX`
+    // after the last). At most one pair per piece.
+    let mut by_ends: HashMap<(usize, usize), (usize, usize)> = HashMap::new();
+    by_ends
+        .try_reserve(pieces.len())
+        .map_err(|_| OutOfMemory::of::<((usize, usize), (usize, usize))>(pieces.len()))?;
+    let mut next: Vec<usize> = Vec::new();
+    let mut loops = mem::with_capacity(faces.len())?;
+    for face in faces {
+        loops.push(mem::with_capacity(piece_count(face))?);
+    }
     let mut collapsed = 0;
-    for (k, piece) in pieces.iter().enumerate() {
-        let (f, c) = (&piece.face, &piece.curve);
+    for (k, piece) in pieces.into_iter().enumerate() {
+        let Piece {
+            face: f,
+            edge,
+            span,
+            curve: c,
+        } = piece;
         let (a, b) = (vertex_of[2 * k], vertex_of[2 * k + 1]);
         // The piece's ends in its face's square, in the loop's direction.
-        let ends = piece.span.map(|s| edge_uv(piece.edge, s));
+        let ends = span.map(|s| edge_uv(edge, s));
         if a == b && c.iter().all(|&p| dist(p, c[0]) <= tol) {
             collapsed += 1;
             continue;
         }
-        let mid = curve_eval(c, 0.5).0;
+        let mid = curve_eval(&c, 0.5).0;
         let key = (a.min(b), a.max(b));
-        let list = by_ends.entry(key).or_default();
-        let found = list.iter().copied().find(|&e| {
-            let edge = &edges[e];
-            edge.uses < 2 && dist(curve_eval(&edge.curve, 0.5).0, mid) <= mid_tol
-        });
+        let mut found = None;
+        if let Some(&(first, _)) = by_ends.get(&key) {
+            let mut e = first;
+            while e != usize::MAX {
+                let edge = &edges[e];
+                if edge.uses < 2 && dist(curve_eval(&edge.curve, 0.5).0, mid) <= mid_tol {
+                    found = Some(e);
+                    break;
+                }
+                e = next[e];
+            }
+        }
         match found {
             Some(e) => {
                 edges[e].uses += 1;
@@ -409,36 +496,54 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
                 let same = if a != b {
                     edges[e].start == a
                 } else {
-                    dist(curve_eval(&edges[e].curve, 0.25).0, curve_eval(c, 0.25).0) <= mid_tol
+                    dist(curve_eval(&edges[e].curve, 0.25).0, curve_eval(&c, 0.25).0) <= mid_tol
                 };
-                loops[*f].push((e, same));
+                mem::push(&mut loops[f], (e, same))?;
                 let [p, q] = ends;
-                edges[e]
-                    .pcurves
-                    .push((*f, if same { [p, q] } else { [q, p] }));
+                mem::push(
+                    &mut edges[e].pcurves,
+                    (f, if same { [p, q] } else { [q, p] }),
+                )?;
             }
             None => {
-                list.push(edges.len());
-                loops[*f].push((edges.len(), true));
-                edges.push(Edge {
-                    start: a,
-                    end: b,
-                    curve: c.clone(),
-                    uses: 1,
-                    piece: k,
-                    pcurves: vec![(*f, ends)],
-                });
+                let e = edges.len();
+                // An edge has at most two faces.
+                let mut pcurves = mem::with_capacity(2)?;
+                pcurves.push((f, ends));
+                mem::push(
+                    &mut edges,
+                    Edge {
+                        start: a,
+                        end: b,
+                        curve: c,
+                        uses: 1,
+                        piece: k,
+                        pcurves,
+                    },
+                )?;
+                mem::push(&mut next, usize::MAX)?;
+                mem::push(&mut loops[f], (e, true))?;
+                // Within the reservation: no allocation.
+                match by_ends.get_mut(&key) {
+                    Some((_, last)) => {
+                        next[*last] = e;
+                        *last = e;
+                    }
+                    None => {
+                        by_ends.insert(key, (e, e));
+                    }
+                }
             }
         }
     }
-    Brep {
-        faces,
+    Ok(Brep {
+        faces: Vec::new(),
         vertices,
         vertex_end,
         edges,
         loops,
         collapsed,
-    }
+    })
 }
 
 /// [`brep`] with the topology of `guide` (the same patches in a higher
@@ -447,7 +552,12 @@ pub fn brep(faces: Vec<StepFace>, tol: f64, mid_tol: f64) -> Brep {
 /// and the geometry of `faces`: each vertex and edge curve is taken from the
 /// same corner and boundary piece of `faces`. Without a matching guide (not
 /// the same faces, degrees and split edges) it is `brep(faces, …)`.
-pub fn brep_guided(faces: Vec<StepFace>, guide: &[StepFace], tol: f64, mid_tol: f64) -> Brep {
+pub fn brep_guided(
+    faces: Vec<StepFace>,
+    guide: &[StepFace],
+    tol: f64,
+    mid_tol: f64,
+) -> Result<Brep, OutOfMemory> {
     let matches = guide.len() == faces.len()
         && guide.iter().zip(&faces).all(|(g, f)| {
             g.finer == f.finer && g.kind == f.kind && g.surface.degree == f.surface.degree
@@ -455,17 +565,17 @@ pub fn brep_guided(faces: Vec<StepFace>, guide: &[StepFace], tol: f64, mid_tol: 
     if !matches {
         return brep(faces, tol, mid_tol);
     }
-    let mut b = brep(guide.to_vec(), tol, mid_tol);
-    let pieces = pieces(&faces);
-    let ends = piece_ends(&pieces);
+    let mut b = topology(guide, tol, mid_tol)?;
+    let mut pieces = pieces(&faces)?;
     for (v, &k) in b.vertices.iter_mut().zip(&b.vertex_end) {
-        *v = ends[k];
+        *v = pieces[k / 2].end(k % 2);
     }
+    // Each edge is its own piece's.
     for e in &mut b.edges {
-        e.curve = pieces[e.piece].curve.clone();
+        e.curve = std::mem::take(&mut pieces[e.piece].curve);
     }
     b.faces = faces;
-    b
+    Ok(b)
 }
 
 /// The enclosed volume `⅓ ∬ P · (P_u × P_v) du dv` summed over the faces
@@ -484,18 +594,17 @@ pub fn volume(faces: &[StepFace]) -> f64 {
         0.360_761_573_048_138_6,
         0.171_324_492_379_170_3,
     ];
-    let nodes: Vec<(f64, f64)> = (0..3)
-        .flat_map(|k| {
-            [
-                ((1.0 - X[k]) / 2.0, W[k] / 2.0),
-                ((1.0 + X[k]) / 2.0, W[k] / 2.0),
-            ]
-        })
-        .collect();
+    let nodes = [0, 1, 2].map(|k| {
+        [
+            ((1.0 - X[k]) / 2.0, W[k] / 2.0),
+            ((1.0 + X[k]) / 2.0, W[k] / 2.0),
+        ]
+    });
+    let nodes = nodes.as_flattened();
     let mut total = 0.0;
     for f in faces {
-        for &(u, wu) in &nodes {
-            for &(v, wv) in &nodes {
+        for &(u, wu) in nodes {
+            for &(v, wv) in nodes {
                 let [p, pu, pv] = f.surface.eval(u, v);
                 total += wu * wv * Point3(p).dot(Point3(pu).cross(Point3(pv)));
             }
@@ -525,22 +634,30 @@ pub fn model_size(faces: &[StepFace]) -> f64 {
 /// A real in ISO 10303-21's form (§6.3.3: a decimal point always, `E` for
 /// the exponent): `1.`, `0.25`, `-4.6053215007904947E-14`; the digits of
 /// [`write_number`] (shortest round-trip), so the value reads back exactly.
+/// Written in place: `text` grows by the number's length and at most one
+/// byte more.
 pub fn real(text: &mut String, x: f64) {
-    let mut s = String::new();
-    write_number(&mut s, x);
-    let (mantissa, exponent) = match s.split_once('e') {
-        Some((m, e)) => (m, Some(e)),
-        None => (s.as_str(), None),
-    };
-    text.push_str(mantissa);
-    if !mantissa.contains('.') {
-        text.push('.');
-    }
-    if let Some(e) = exponent {
-        text.push('E');
-        text.push_str(e);
+    let start = text.len();
+    write_number(text, x);
+    match text[start..].find('e') {
+        Some(k) => {
+            let e = start + k;
+            text.replace_range(e..e + 1, "E");
+            if !text[start..e].contains('.') {
+                text.insert(e, '.');
+            }
+        }
+        None => {
+            if !text[start..].contains('.') {
+                text.push('.');
+            }
+        }
     }
 }
+
+/// The most bytes [`real`] writes (an `f64`'s shortest round-trip digits,
+/// sign, point and exponent take at most 25).
+const REAL_BYTES: usize = 32;
 
 /// A STEP string literal (§6.3.4): `'` doubled, only printable ASCII kept
 /// (others become `?`).
@@ -557,43 +674,178 @@ pub fn string(text: &mut String, s: &str) {
     text.push('\'');
 }
 
-/// Entity instances numbered `#1, #2, …` in the order written.
-struct Data {
+/// Text whose growth is fallible: room is reserved
+/// (`String::try_reserve_exact`) before anything is written, and a refusal
+/// is an [`OutOfMemory`] error (through [`fmt::Write`], the first refusal
+/// is kept and the write fails).
+#[derive(Debug, Default)]
+struct Text {
     text: String,
+    refused: Option<OutOfMemory>,
+}
+
+impl Text {
+    /// The least the text grows by.
+    const STEP: usize = 1 << 16;
+
+    /// Room for `additional` more bytes. The text grows by an eighth of its
+    /// size (at least [`Text::STEP`]), not by doubling: what it holds past
+    /// the file's end stays under an eighth of the file.
+    fn reserve(&mut self, additional: usize) -> Result<(), OutOfMemory> {
+        let (len, capacity) = (self.text.len(), self.text.capacity());
+        if capacity - len >= additional {
+            return Ok(());
+        }
+        let grown = capacity.saturating_add((capacity / 8).max(Self::STEP));
+        let bytes = len.saturating_add(additional).max(grown);
+        self.text
+            .try_reserve_exact(bytes - len)
+            .map_err(|_| OutOfMemory { bytes })
+    }
+
+    /// Appends `s`.
+    fn push(&mut self, s: &str) -> Result<(), OutOfMemory> {
+        self.reserve(s.len())?;
+        self.text.push_str(s);
+        Ok(())
+    }
+
+    /// Appends the formatted `args`.
+    fn format(&mut self, args: fmt::Arguments) -> Result<(), OutOfMemory> {
+        match fmt::Write::write_fmt(self, args) {
+            Ok(()) => Ok(()),
+            // Formatting fails only when this text refuses to grow.
+            Err(fmt::Error) => Err(self.refused.unwrap_or(OutOfMemory { bytes: usize::MAX })),
+        }
+    }
+
+    /// Appends `x` as a STEP real ([`real`]).
+    fn real(&mut self, x: f64) -> Result<(), OutOfMemory> {
+        self.reserve(REAL_BYTES)?;
+        real(&mut self.text, x);
+        Ok(())
+    }
+
+    /// Appends `s` as a STEP string literal ([`string`]).
+    fn string(&mut self, s: &str) -> Result<(), OutOfMemory> {
+        // Each character takes at most two bytes, and two quotes.
+        self.reserve(s.len().saturating_mul(2).saturating_add(2))?;
+        string(&mut self.text, s);
+        Ok(())
+    }
+}
+
+impl fmt::Write for Text {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        match self.push(s) {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                self.refused.get_or_insert(e);
+                Err(fmt::Error)
+            }
+        }
+    }
+}
+
+/// Instance references `#a,#b,…` (a STEP list's items).
+struct Refs<'a>(&'a [usize]);
+
+impl fmt::Display for Refs<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        for (k, id) in self.0.iter().enumerate() {
+            if k > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "#{id}")?;
+        }
+        Ok(())
+    }
+}
+
+/// A list of lists of references: `ids` in rows of `n`, `(#a,#b),(#c,#d)`.
+struct Rows<'a>(&'a [usize], usize);
+
+impl fmt::Display for Rows<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        for (k, row) in self.0.chunks(self.1).enumerate() {
+            if k > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "({})", Refs(row))?;
+        }
+        Ok(())
+    }
+}
+
+/// A face's name: `patch k` or `hole fill k.e`.
+struct Label(FaceKind);
+
+impl fmt::Display for Label {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self.0 {
+            FaceKind::Patch(k) => write!(f, "patch {k}"),
+            FaceKind::HoleFill { patch, edge } => write!(f, "hole fill {patch}.{edge}"),
+        }
+    }
+}
+
+/// Entity instances numbered `#1, #2, …` in the order written, straight
+/// into the file's text.
+struct Data {
+    text: Text,
     next: usize,
 }
 
 impl Data {
-    /// Writes `#k=body;` and returns `k`.
-    fn add(&mut self, body: &str) -> usize {
+    /// Starts instance `#k=` and returns `k`.
+    fn begin(&mut self) -> Result<usize, OutOfMemory> {
         let k = self.next;
         self.next += 1;
-        let _ = writeln!(self.text, "#{k}={body};");
-        k
+        self.text.format(format_args!("#{k}="))?;
+        Ok(k)
     }
 
-    /// `CARTESIAN_POINT('',(x,y,z))`: a point in model units.
-    fn point(&mut self, p: [f64; 3]) -> usize {
-        let mut b = String::from("CARTESIAN_POINT('',(");
-        for (k, x) in p.iter().enumerate() {
-            if k > 0 {
-                b.push(',');
+    /// Ends an instance: `;` and the line's end.
+    fn end(&mut self) -> Result<(), OutOfMemory> {
+        self.text.push(";\n")
+    }
+
+    /// Writes `#k=body;` and returns `k`.
+    fn add(&mut self, body: fmt::Arguments) -> Result<usize, OutOfMemory> {
+        let k = self.begin()?;
+        self.text.format(body)?;
+        self.end()?;
+        Ok(k)
+    }
+
+    /// `CARTESIAN_POINT('',(x,y,z))`: a point in model units (or `(u,v)`,
+    /// a point of a parameter square).
+    fn point(&mut self, p: &[f64]) -> Result<usize, OutOfMemory> {
+        let k = self.begin()?;
+        self.text.push("CARTESIAN_POINT('',(")?;
+        for (i, x) in p.iter().enumerate() {
+            if i > 0 {
+                self.text.push(",")?;
             }
-            real(&mut b, *x);
+            self.text.real(*x)?;
         }
-        b.push_str("))");
-        self.add(&b)
+        self.text.push("))")?;
+        self.end()?;
+        Ok(k)
     }
 
     /// `B_SPLINE_CURVE_WITH_KNOTS`: a Bézier curve of degree `d` as a
     /// B-spline with knots 0 and 1 of multiplicity `d + 1`.
-    fn curve(&mut self, c: &[[f64; 3]]) -> usize {
+    fn curve(&mut self, c: &[[f64; 3]]) -> Result<usize, OutOfMemory> {
         let d = c.len() - 1;
-        let ids: Vec<String> = c.iter().map(|&p| format!("#{}", self.point(p))).collect();
-        self.add(&format!(
+        let mut ids = mem::with_capacity(c.len())?;
+        for p in c {
+            ids.push(self.point(p)?);
+        }
+        self.add(format_args!(
             "B_SPLINE_CURVE_WITH_KNOTS('',{d},({}),.UNSPECIFIED.,.F.,.F.,({m},{m}),(0.,1.),\
              .PIECEWISE_BEZIER_KNOTS.)",
-            ids.join(","),
+            Refs(&ids),
             m = d + 1
         ))
     }
@@ -601,43 +853,39 @@ impl Data {
     /// `PCURVE`: the straight segment `uv[0] → uv[1]` (parameter 0 to 1)
     /// of a surface's parameter square, as a `DEFINITIONAL_REPRESENTATION`
     /// of a degree-1 `B_SPLINE_CURVE_WITH_KNOTS` in the context `ctx`.
-    fn pcurve(&mut self, surface: usize, uv: [[f64; 2]; 2], ctx: usize) -> usize {
-        let ids: Vec<String> = uv
-            .iter()
-            .map(|p| {
-                let mut b = String::from("CARTESIAN_POINT('',(");
-                real(&mut b, p[0]);
-                b.push(',');
-                real(&mut b, p[1]);
-                b.push_str("))");
-                format!("#{}", self.add(&b))
-            })
-            .collect();
-        let line = self.add(&format!(
+    fn pcurve(
+        &mut self,
+        surface: usize,
+        uv: [[f64; 2]; 2],
+        ctx: usize,
+    ) -> Result<usize, OutOfMemory> {
+        let ids = [self.point(&uv[0])?, self.point(&uv[1])?];
+        let line = self.add(format_args!(
             "B_SPLINE_CURVE_WITH_KNOTS('',1,({}),.POLYLINE_FORM.,.F.,.F.,(2,2),(0.,1.),\
              .UNSPECIFIED.)",
-            ids.join(",")
-        ));
-        let rep = self.add(&format!("DEFINITIONAL_REPRESENTATION('',(#{line}),#{ctx})"));
-        self.add(&format!("PCURVE('',#{surface},#{rep})"))
+            Refs(&ids)
+        ))?;
+        let rep = self.add(format_args!(
+            "DEFINITIONAL_REPRESENTATION('',(#{line}),#{ctx})"
+        ))?;
+        self.add(format_args!("PCURVE('',#{surface},#{rep})"))
     }
 
     /// `B_SPLINE_SURFACE_WITH_KNOTS`: a tensor Bézier patch as a B-spline
     /// surface, `control_points_list[i][j] = b_ij` (`i` along `u`).
-    fn surface(&mut self, s: &Bezier) -> usize {
+    fn surface(&mut self, s: &Bezier) -> Result<usize, OutOfMemory> {
         let d = s.degree;
-        let rows: Vec<String> = (0..=d)
-            .map(|i| {
-                let ids: Vec<String> = (0..=d)
-                    .map(|j| format!("#{}", self.point(s.at(i, j))))
-                    .collect();
-                format!("({})", ids.join(","))
-            })
-            .collect();
-        self.add(&format!(
+        let n = s.n();
+        let mut ids = mem::with_capacity(n * n)?;
+        for i in 0..n {
+            for j in 0..n {
+                ids.push(self.point(&s.at(i, j))?);
+            }
+        }
+        self.add(format_args!(
             "B_SPLINE_SURFACE_WITH_KNOTS('',{d},{d},({}),.UNSPECIFIED.,.F.,.F.,.F.,\
              ({m},{m}),({m},{m}),(0.,1.),(0.,1.),.PIECEWISE_BEZIER_KNOTS.)",
-            rows.join(","),
+            Rows(&ids, n),
             m = d + 1
         ))
     }
@@ -682,140 +930,144 @@ pub fn time_stamp(t: std::time::SystemTime) -> String {
     )
 }
 
-/// The STEP file of `b`: header, product structure, units, and the shell.
-pub fn write(b: &Brep, h: &Header) -> String {
+/// The STEP file of `b`: header, product structure, units, and the shell;
+/// or the error when its text (or a list of instance numbers) cannot be
+/// allocated.
+pub fn write(b: &Brep, h: &Header) -> Result<String, OutOfMemory> {
     let size = model_size(&b.faces);
     let uncertainty = if size > 0.0 { UNCERTAINTY * size } else { 1e-7 };
-    let closed = b.is_closed();
-    let mut text = String::with_capacity(b.faces.len() * 4096);
-    text.push_str("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((");
-    string(&mut text, &h.description);
-    text.push(',');
-    let mut units = String::from("units: millimetre; distance uncertainty: ");
-    real(&mut units, uncertainty);
-    string(&mut text, &units);
-    text.push_str("),'2;1');\nFILE_NAME(");
-    string(&mut text, &h.file_name);
-    text.push(',');
-    string(&mut text, &h.time_stamp);
-    text.push_str(",(''),(''),'capdiv','capdiv surface','');\n");
-    text.push_str(
-        "FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n",
-    );
+    let closed = b.is_closed()?;
+    // One text, header and data: it grows as it is written.
     let mut d = Data {
-        text: String::with_capacity(b.faces.len() * 4000),
+        text: Text::default(),
         next: 1,
     };
+    let t = &mut d.text;
+    t.push("ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((")?;
+    t.string(&h.description)?;
+    t.push(",")?;
+    let mut units = String::from("units: millimetre; distance uncertainty: ");
+    real(&mut units, uncertainty);
+    t.string(&units)?;
+    t.push("),'2;1');\nFILE_NAME(")?;
+    t.string(&h.file_name)?;
+    t.push(",")?;
+    t.string(&h.time_stamp)?;
+    t.push(",(''),(''),'capdiv','capdiv surface','');\n")?;
+    t.push("FILE_SCHEMA(('AUTOMOTIVE_DESIGN { 1 0 10303 214 1 1 1 1 }'));\nENDSEC;\nDATA;\n")?;
     // Product structure (AP214 part 1: a part with one shape).
-    let app = d.add("APPLICATION_CONTEXT('core data for automotive mechanical design processes')");
-    d.add(&format!(
+    let app = d.add(format_args!(
+        "APPLICATION_CONTEXT('core data for automotive mechanical design processes')"
+    ))?;
+    d.add(format_args!(
         "APPLICATION_PROTOCOL_DEFINITION('international standard','automotive_design',2000,#{app})"
-    ));
-    let pc = d.add(&format!("PRODUCT_CONTEXT('',#{app},'mechanical')"));
+    ))?;
+    let pc = d.add(format_args!("PRODUCT_CONTEXT('',#{app},'mechanical')"))?;
     let mut name = String::new();
     string(&mut name, &h.product);
-    let product = d.add(&format!("PRODUCT({name},{name},'',(#{pc}))"));
-    let pdf = d.add(&format!("PRODUCT_DEFINITION_FORMATION('','',#{product})"));
-    let pdc = d.add(&format!(
+    let product = d.add(format_args!("PRODUCT({name},{name},'',(#{pc}))"))?;
+    let pdf = d.add(format_args!(
+        "PRODUCT_DEFINITION_FORMATION('','',#{product})"
+    ))?;
+    let pdc = d.add(format_args!(
         "PRODUCT_DEFINITION_CONTEXT('part definition',#{app},'design')"
-    ));
-    let pd = d.add(&format!("PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"));
-    let pds = d.add(&format!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"));
+    ))?;
+    let pd = d.add(format_args!(
+        "PRODUCT_DEFINITION('design','',#{pdf},#{pdc})"
+    ))?;
+    let pds = d.add(format_args!("PRODUCT_DEFINITION_SHAPE('','',#{pd})"))?;
     // Units and uncertainty: the geometric context of the representation.
-    let length = d.add("(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))");
-    let angle = d.add("(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))");
-    let solid_angle = d.add("(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())");
+    let length = d.add(format_args!(
+        "(LENGTH_UNIT()NAMED_UNIT(*)SI_UNIT(.MILLI.,.METRE.))"
+    ))?;
+    let angle = d.add(format_args!(
+        "(NAMED_UNIT(*)PLANE_ANGLE_UNIT()SI_UNIT($,.RADIAN.))"
+    ))?;
+    let solid_angle = d.add(format_args!(
+        "(NAMED_UNIT(*)SI_UNIT($,.STERADIAN.)SOLID_ANGLE_UNIT())"
+    ))?;
     let mut u = String::new();
     real(&mut u, uncertainty);
-    let unc = d.add(&format!(
+    let unc = d.add(format_args!(
         "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({u}),#{length},'distance_accuracy_value',\
          'maximum distance between points taken as equal')"
-    ));
-    let ctx = d.add(&format!(
+    ))?;
+    let ctx = d.add(format_args!(
         "(GEOMETRIC_REPRESENTATION_CONTEXT(3)GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{unc}))\
          GLOBAL_UNIT_ASSIGNED_CONTEXT((#{length},#{angle},#{solid_angle}))\
          REPRESENTATION_CONTEXT('',''))"
-    ));
+    ))?;
     // The faces' parameter squares (for the edges' PCURVEs).
-    let uv_ctx = d.add(
+    let uv_ctx = d.add(format_args!(
         "(GEOMETRIC_REPRESENTATION_CONTEXT(2)PARAMETRIC_REPRESENTATION_CONTEXT()\
-         REPRESENTATION_CONTEXT('2D SPACE',''))",
-    );
+         REPRESENTATION_CONTEXT('2D SPACE',''))"
+    ))?;
     // Geometry, then topology.
-    let surface: Vec<usize> = b.faces.iter().map(|f| d.surface(&f.surface)).collect();
-    let vertex: Vec<usize> = b
-        .vertices
-        .iter()
-        .map(|&p| {
-            let cp = d.point(p);
-            d.add(&format!("VERTEX_POINT('',#{cp})"))
-        })
-        .collect();
-    let edge: Vec<usize> = b
-        .edges
-        .iter()
-        .map(|e| {
-            let c = d.curve(&e.curve);
-            let pcurves: Vec<String> = e
-                .pcurves
-                .iter()
-                .map(|&(f, uv)| format!("#{}", d.pcurve(surface[f], uv, uv_ctx)))
-                .collect();
-            let sc = d.add(&format!(
-                "SURFACE_CURVE('',#{c},({}),.CURVE_3D.)",
-                pcurves.join(",")
-            ));
-            d.add(&format!(
-                "EDGE_CURVE('',#{},#{},#{sc},.T.)",
-                vertex[e.start], vertex[e.end]
-            ))
-        })
-        .collect();
-    let mut face_ids = Vec::with_capacity(b.faces.len());
-    for (f, face) in b.faces.iter().enumerate() {
-        let oriented: Vec<String> = b.loops[f]
-            .iter()
-            .map(|&(e, same)| {
-                let s = if same { ".T." } else { ".F." };
-                format!(
-                    "#{}",
-                    d.add(&format!("ORIENTED_EDGE('',*,*,#{},{s})", edge[e]))
-                )
-            })
-            .collect();
-        let lp = d.add(&format!("EDGE_LOOP('',({}))", oriented.join(",")));
-        let bound = d.add(&format!("FACE_OUTER_BOUND('',#{lp},.T.)"));
-        let surface = surface[f];
-        let label = match face.kind {
-            FaceKind::Patch(k) => format!("patch {k}"),
-            FaceKind::HoleFill { patch, edge } => format!("hole fill {patch}.{edge}"),
-        };
-        face_ids.push(d.add(&format!(
-            "ADVANCED_FACE('{label}',(#{bound}),#{surface},.T.)"
-        )));
+    let mut surface = mem::with_capacity(b.faces.len())?;
+    for f in &b.faces {
+        surface.push(d.surface(&f.surface)?);
     }
-    let list: Vec<String> = face_ids.iter().map(|k| format!("#{k}")).collect();
-    let origin = d.point([0.0; 3]);
-    let z = d.add("DIRECTION('',(0.,0.,1.))");
-    let x = d.add("DIRECTION('',(1.,0.,0.))");
-    let axis = d.add(&format!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"));
+    let mut vertex = mem::with_capacity(b.vertices.len())?;
+    for p in &b.vertices {
+        let cp = d.point(p)?;
+        vertex.push(d.add(format_args!("VERTEX_POINT('',#{cp})"))?);
+    }
+    let mut edge = mem::with_capacity(b.edges.len())?;
+    for e in &b.edges {
+        let c = d.curve(&e.curve)?;
+        let mut pcurves = mem::with_capacity(e.pcurves.len())?;
+        for &(f, uv) in &e.pcurves {
+            pcurves.push(d.pcurve(surface[f], uv, uv_ctx)?);
+        }
+        let sc = d.add(format_args!(
+            "SURFACE_CURVE('',#{c},({}),.CURVE_3D.)",
+            Refs(&pcurves)
+        ))?;
+        edge.push(d.add(format_args!(
+            "EDGE_CURVE('',#{},#{},#{sc},.T.)",
+            vertex[e.start], vertex[e.end]
+        ))?);
+    }
+    let mut face_ids = mem::with_capacity(b.faces.len())?;
+    let mut oriented = Vec::new();
+    for (f, face) in b.faces.iter().enumerate() {
+        oriented.clear();
+        mem::reserve(&mut oriented, b.loops[f].len())?;
+        for &(e, same) in &b.loops[f] {
+            let s = if same { ".T." } else { ".F." };
+            oriented.push(d.add(format_args!("ORIENTED_EDGE('',*,*,#{},{s})", edge[e]))?);
+        }
+        let lp = d.add(format_args!("EDGE_LOOP('',({}))", Refs(&oriented)))?;
+        let bound = d.add(format_args!("FACE_OUTER_BOUND('',#{lp},.T.)"))?;
+        let surface = surface[f];
+        face_ids.push(d.add(format_args!(
+            "ADVANCED_FACE('{}',(#{bound}),#{surface},.T.)",
+            Label(face.kind)
+        ))?);
+    }
+    let list = Refs(&face_ids);
+    let origin = d.point(&[0.0; 3])?;
+    let z = d.add(format_args!("DIRECTION('',(0.,0.,1.))"))?;
+    let x = d.add(format_args!("DIRECTION('',(1.,0.,0.))"))?;
+    let axis = d.add(format_args!("AXIS2_PLACEMENT_3D('',#{origin},#{z},#{x})"))?;
     let rep = if closed {
-        let shell = d.add(&format!("CLOSED_SHELL('',({}))", list.join(",")));
-        let solid = d.add(&format!("MANIFOLD_SOLID_BREP({name},#{shell})"));
-        d.add(&format!(
+        let shell = d.add(format_args!("CLOSED_SHELL('',({list}))"))?;
+        let solid = d.add(format_args!("MANIFOLD_SOLID_BREP({name},#{shell})"))?;
+        d.add(format_args!(
             "ADVANCED_BREP_SHAPE_REPRESENTATION({name},(#{axis},#{solid}),#{ctx})"
-        ))
+        ))?
     } else {
-        let shell = d.add(&format!("OPEN_SHELL('',({}))", list.join(",")));
-        let model = d.add(&format!("SHELL_BASED_SURFACE_MODEL({name},(#{shell}))"));
-        d.add(&format!(
+        let shell = d.add(format_args!("OPEN_SHELL('',({list}))"))?;
+        let model = d.add(format_args!("SHELL_BASED_SURFACE_MODEL({name},(#{shell}))"))?;
+        d.add(format_args!(
             "MANIFOLD_SURFACE_SHAPE_REPRESENTATION({name},(#{axis},#{model}),#{ctx})"
-        ))
+        ))?
     };
-    d.add(&format!("SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"));
-    text.push_str(&d.text);
-    text.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
-    text
+    d.add(format_args!(
+        "SHAPE_DEFINITION_REPRESENTATION(#{pds},#{rep})"
+    ))?;
+    d.text.push("ENDSEC;\nEND-ISO-10303-21;\n")?;
+    Ok(d.text.text)
 }
 
 #[cfg(test)]
@@ -871,6 +1123,36 @@ mod tests {
     }
 
     #[test]
+    fn reals_are_appended_in_place() {
+        let mut s = String::from("(1e5,");
+        for x in [1e-20, 2.5, 3.0, -7e22] {
+            real(&mut s, x);
+            s.push(',');
+        }
+        assert_eq!(s, "(1e5,1.E-20,2.5,3.,-7.E22,");
+    }
+
+    #[test]
+    fn text_grows_by_an_eighth() {
+        let mut t = Text::default();
+        let line = "#123=CARTESIAN_POINT('',(1.,2.,3.));\n";
+        while t.text.len() < 4 << 20 {
+            t.push(line).unwrap();
+            let (len, capacity) = (t.text.len(), t.text.capacity());
+            assert!(
+                capacity - len <= (len / 8).max(Text::STEP),
+                "{len} {capacity}"
+            );
+        }
+        let mut d = Data { text: t, next: 7 };
+        assert_eq!(d.point(&[0.5, -1.0]).unwrap(), 7);
+        assert!(d
+            .text
+            .text
+            .ends_with(";\n#7=CARTESIAN_POINT('',(0.5,-1.));\n"));
+    }
+
+    #[test]
     fn strings_escape_quotes_and_non_ascii() {
         let mut s = String::new();
         string(&mut s, "it's ü\\");
@@ -885,7 +1167,7 @@ mod tests {
             [3.0, 2.0, 1.0],
             [4.0, 0.0, 0.0],
         ];
-        let (a, b) = split_half(&c);
+        let (a, b) = split_half(&c).unwrap();
         let mid = curve_eval(&c, 0.5).0;
         assert_eq!(a[0], c[0]);
         assert_eq!(b[3], c[3]);
@@ -901,9 +1183,9 @@ mod tests {
 
     #[test]
     fn a_cube_of_patches_is_a_closed_shell_of_unit_volume() {
-        let b = brep(cube(), 1e-12, 1e-9);
+        let b = brep(cube(), 1e-12, 1e-9).unwrap();
         assert_eq!((b.vertices.len(), b.edges.len()), (8, 12));
-        assert!(b.is_closed());
+        assert!(b.is_closed().unwrap());
         assert_eq!(b.free_edges(), 0);
         assert!(b.loops.iter().all(|l| l.len() == 4));
         assert!((volume(&b.faces) - 1.0).abs() < 1e-14);
@@ -915,7 +1197,8 @@ mod tests {
                 time_stamp: "2026-01-01T00:00:00".into(),
                 description: "test".into(),
             },
-        );
+        )
+        .unwrap();
         assert!(step.starts_with("ISO-10303-21;\nHEADER;\n"));
         assert!(step.ends_with("ENDSEC;\nEND-ISO-10303-21;\n"));
         assert_eq!(step.matches("=ADVANCED_FACE(").count(), 6);
@@ -949,14 +1232,17 @@ mod tests {
                 p[0] += k as f64 * 1e-9;
             }
         }
-        assert!(!brep(faces.clone(), 1e-12, 1e-9).is_closed());
-        let b = brep_guided(faces.clone(), &cube(), 1e-12, 1e-9);
-        assert!(b.is_closed());
+        assert!(!brep(faces.clone(), 1e-12, 1e-9)
+            .unwrap()
+            .is_closed()
+            .unwrap());
+        let b = brep_guided(faces.clone(), &cube(), 1e-12, 1e-9).unwrap();
+        assert!(b.is_closed().unwrap());
         assert_eq!((b.vertices.len(), b.edges.len()), (8, 12));
         // The geometry is the rounded faces'.
         assert_eq!(b.faces, faces);
         for e in &b.edges {
-            let piece = &pieces(&faces)[e.piece];
+            let piece = &pieces(&faces).unwrap()[e.piece];
             assert_eq!(e.curve, piece.curve);
             assert!(faces[piece.face].surface.net.contains(&e.curve[0]));
         }
@@ -979,7 +1265,7 @@ mod tests {
 
     #[test]
     fn pcurves_map_onto_the_edge_curves() {
-        assert_pcurves_on_curves(&brep(cube(), 1e-12, 1e-9));
+        assert_pcurves_on_curves(&brep(cube(), 1e-12, 1e-9).unwrap());
         let (x, y) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
         let half = |o: [f64; 3]| flat(o, [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], 0);
         let t_junction = vec![
@@ -987,15 +1273,15 @@ mod tests {
             half([1.0, 0.0, 0.0]),
             half([1.0, 0.5, 0.0]),
         ];
-        assert_pcurves_on_curves(&brep(t_junction, 1e-12, 1e-9));
+        assert_pcurves_on_curves(&brep(t_junction, 1e-12, 1e-9).unwrap());
     }
 
     #[test]
     fn a_face_without_its_top_is_an_open_shell() {
         let mut faces = cube();
         faces.remove(1);
-        let b = brep(faces, 1e-12, 1e-9);
-        assert!(!b.is_closed());
+        let b = brep(faces, 1e-12, 1e-9).unwrap();
+        assert!(!b.is_closed().unwrap());
         assert_eq!(b.free_edges(), 4);
         assert_eq!(b.edges.len(), 12);
     }
@@ -1010,7 +1296,7 @@ mod tests {
             half([1.0, 0.0, 0.0]),
             half([1.0, 0.5, 0.0]),
         ];
-        let b = brep(faces, 1e-12, 1e-9);
+        let b = brep(faces, 1e-12, 1e-9).unwrap();
         assert_eq!(b.loops[0].len(), 5);
         // The two pieces of the coarse edge are the finer patches' edges u = 0.
         let shared: Vec<usize> = b.loops[0]
@@ -1041,7 +1327,7 @@ mod tests {
                 // The ring's edge runs b → a around the hole.
                 let c: Vec<[f64; 3]> = (0..4).map(|k| lerp(*b, *a, k as f64 / 3.0)).collect();
                 StepFace {
-                    surface: hole_fill(&c, limit),
+                    surface: hole_fill(&c, limit).unwrap(),
                     finer: 0,
                     kind: FaceKind::HoleFill { patch: 0, edge: 0 },
                 }
@@ -1052,7 +1338,7 @@ mod tests {
                 assert_eq!(f.surface.eval(u, 1.0)[0], limit);
             }
         }
-        let b = brep(fills, 1e-12, 1e-9);
+        let b = brep(fills, 1e-12, 1e-9).unwrap();
         assert_eq!(b.collapsed, 4);
         assert_eq!(b.vertices.len(), 5);
         // The square hole's four edges (free) and four shared rulings.
