@@ -273,6 +273,19 @@ fn surface_gltf_under_any_memory_limit_succeeds_or_fails_as_one_line() {
 }
 
 #[test]
+fn surface_step_under_any_memory_limit_succeeds_or_fails_as_one_line() {
+    let dir = tempdir();
+    let input = small_torus(dir.path());
+    // f32 takes the B-rep guided by the f64 surface's.
+    for precision in ["f64", "f32"] {
+        let args = format!(
+            "surface '{input}' --threads 1 --depth 2 --precision {precision} --format step"
+        );
+        every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.step"));
+    }
+}
+
+#[test]
 fn surface_f32_obj_under_any_memory_limit_succeeds_or_fails_as_one_line() {
     let dir = tempdir();
     let input = small_torus(dir.path());
