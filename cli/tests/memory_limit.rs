@@ -293,13 +293,46 @@ fn surface_f32_obj_under_any_memory_limit_succeeds_or_fails_as_one_line() {
     every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.obj"));
 }
 
+/// [`triangle_torus`] of `n × n` quads with texture coordinates (the
+/// torus' parameters) at every corner, as OBJ text.
+fn textured_triangle_torus(n: usize) -> String {
+    let mut text = torus_vertices(n);
+    for i in 0..=n {
+        for j in 0..=n {
+            let _ = writeln!(text, "vt {} {}", i as f64 / n as f64, j as f64 / n as f64);
+        }
+    }
+    let v = |i: usize, j: usize| (i % n) * n + (j % n) + 1;
+    let t = |i: usize, j: usize| i * (n + 1) + j + 1;
+    for i in 0..n {
+        for j in 0..n {
+            let c =
+                [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(a, b)| (v(a, b), t(a, b)));
+            for [p, q, r] in [[c[0], c[1], c[2]], [c[0], c[2], c[3]]] {
+                let _ = writeln!(text, "f {}/{} {}/{} {}/{}", p.0, p.1, q.0, q.1, r.0, r.1);
+            }
+        }
+    }
+    text
+}
+
+#[test]
+fn surface_json_built_whole_under_any_memory_limit_succeeds_or_fails_as_one_line() {
+    // Texture coordinates take the collected path: the JSON built whole.
+    let dir = tempdir();
+    let input = dir.path().join("textured.obj");
+    std::fs::write(&input, textured_triangle_torus(12)).unwrap();
+    let args = format!("surface '{}' --threads 1 --format json --pretty", s(&input));
+    every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.json"));
+}
+
 #[test]
 fn pictures_under_any_memory_limit_succeed_or_fail_as_one_line() {
     let dir = tempdir();
     let input = small_torus(dir.path());
     for args in [
-        format!("render '{input}' --shade highlight"),
-        format!("compare '{input}' --shade mean"),
+        format!("render '{input}' --size 320x240 --shade highlight"),
+        format!("compare '{input}' --size 320x240 --shade mean"),
     ] {
         every_limit_succeeds_or_fails_as_one_line(&args, &dir.path().join("out.png"));
     }

@@ -337,7 +337,9 @@ impl<R: Real> StreamTessellator<R> {
     /// The allocation the system refused, if it refused one: the stream
     /// then stopped taking patches (what was handed to the sink before is
     /// a prefix of the output, and [`Self::finish`] hands over nothing
-    /// more). Every table whose size depends on the input (the weld
+    /// more; its summary then counts that prefix, and its `closed` speaks
+    /// of the prefix's edges, not of the surface). Every table whose size
+    /// depends on the input (the weld
     /// table, the waiting output, the open edges, a patch's samples) is
     /// reserved fallibly before it grows.
     pub fn refused(&self) -> Option<OutOfMemory> {
