@@ -421,7 +421,8 @@ pub fn build_with<R: Scalar>(
     let (summary, facevarying) = run_scheme::<R>(name, mesh, options, &mut sink)?;
     let (patches, caps) = sink.finish().map_err(CliError::out_of_memory_in(name))?;
     let uvs = match facevarying {
-        Some(fv) => patches.iter().map(|p| fv.patch(p)).collect(),
+        Some(fv) => capdiv_mesh::mem::collect(patches.iter().map(|p| fv.patch(p)))
+            .map_err(CliError::out_of_memory_in(name))?,
         None => Vec::new(),
     };
     Ok(Surface {
@@ -490,7 +491,10 @@ pub fn run_scheme<R: Scalar>(
     let analysis = start.elapsed();
 
     let start = Instant::now();
-    let positions: Vec<[R; 3]> = mesh.vertices.iter().map(|p| p.map(R::from_f64)).collect();
+    let memory = CliError::out_of_memory_in(name);
+    let positions: Vec<[R; 3]> =
+        capdiv_mesh::mem::collect(mesh.vertices.iter().map(|p| p.map(R::from_f64)))
+            .map_err(&memory)?;
     let mut evaluator = bounded.evaluator::<R>().map_err(surface_err)?;
     let mut stats = SurfaceStats::new();
     crate::threads::evaluate(
@@ -518,14 +522,23 @@ pub fn run_scheme<R: Scalar>(
     let mut caps: Vec<CapCount> = stats.caps.iter().map(CapCount::from).collect();
     caps.sort_by_key(|k| (k.scheme, k.valence));
     let reasons = |list: &[capdiv_mesh::plan::UncoveredFace]| {
-        list.iter()
-            .map(|u| FaceReason {
-                face: u.face,
-                reason: u.reason.id(),
-                description: u.reason.describe(),
-            })
-            .collect()
+        capdiv_mesh::mem::collect(list.iter().map(|u| FaceReason {
+            face: u.face,
+            reason: u.reason.id(),
+            description: u.reason.describe(),
+        }))
+        .map_err(&memory)
     };
+    // An input whose topology cannot be built for want of memory is an
+    // error, not an open surface.
+    let closed = mesh.tags.holes.is_empty()
+        && match Topology::new(mesh) {
+            Ok(t) => t.is_closed(),
+            Err(capdiv_mesh::MeshError::OutOfMemory { bytes }) => {
+                return Err(CliError::out_of_memory(name, bytes))
+            }
+            Err(_) => false,
+        };
     let mut levels = stats.levels;
     if levels.is_empty() {
         levels.push(0);
@@ -534,7 +547,7 @@ pub fn run_scheme<R: Scalar>(
         input: InputSummary {
             vertices: plan.input_vertices,
             faces: plan.input_faces,
-            closed: mesh.tags.holes.is_empty() && Topology::new(mesh).is_ok_and(|t| t.is_closed()),
+            closed,
         },
         depth: options.depth,
         tolerance,
@@ -550,18 +563,16 @@ pub fn run_scheme<R: Scalar>(
         patches: stats.patches,
         caps,
         refinement_steps: plan.steps.len(),
-        needed_refinement: reasons(&plan.needed_refinement),
-        uncovered: reasons(&plan.uncovered),
+        needed_refinement: reasons(&plan.needed_refinement)?,
+        uncovered: reasons(&plan.uncovered)?,
         patches_per_level: levels,
         last_holes: plan.last_holes.len(),
-        fallbacks: plan
-            .input_fallbacks()
-            .map(|(vertex, r)| Fallback {
-                vertex: vertex + 1,
-                reason: r.id(),
-                description: r.describe(),
-            })
-            .collect(),
+        fallbacks: capdiv_mesh::mem::collect(plan.input_fallbacks().map(|(vertex, r)| Fallback {
+            vertex: vertex + 1,
+            reason: r.id(),
+            description: r.describe(),
+        }))
+        .map_err(&memory)?,
         times_ms: Times {
             analysis: analysis.as_secs_f64() * 1e3,
             evaluation: evaluation.as_secs_f64() * 1e3,
