@@ -50,6 +50,21 @@ impl TryBytes {
         })
     }
 
+    /// The bytes written so far.
+    pub fn as_bytes(&self) -> &[u8] {
+        &self.bytes
+    }
+
+    /// Empties the buffer, keeping its room (and any refusal).
+    pub fn clear(&mut self) {
+        self.bytes.clear();
+    }
+
+    /// The first refusal, if any.
+    pub fn refused(&self) -> Option<OutOfMemory> {
+        self.refused
+    }
+
     /// The bytes written, or the first refusal.
     pub fn into_result(self) -> Result<Vec<u8>, OutOfMemory> {
         match self.refused {

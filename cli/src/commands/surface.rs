@@ -594,7 +594,8 @@ struct SurfaceJson<'a, P, C> {
 
 /// One patch as printed.
 #[derive(Clone, Debug, Serialize)]
-pub struct PatchJson<R> {
+#[serde(bound = "R: Copy + Serialize")]
+pub struct PatchJson<'a, R> {
     /// `regular`, `c2ps`, `eg` or `catmull-clark`.
     pub kind: &'static str,
     /// 3 (bicubic) or 4 (bi-quartic, EG).
@@ -609,25 +610,21 @@ pub struct PatchJson<R> {
     /// `[u0, u1, v0, v1]` in the face's (or sub-quad's) square.
     pub domain: [f64; 4],
     /// `(d+1)²` points, `points[(d+1)·j + i]` = `b_ij`, `i` along `u`.
-    pub points: Vec<[R; 3]>,
+    pub points: ControlPoints<'a, R>,
     /// With input UVs: the texture coordinates at the patch's corners
     /// `(u, v)` = (0,0), (1,0), (1,1), (0,1), bilinear in between.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub uv: Option<[[f64; 2]; 4]>,
 }
 
-impl<R: Scalar> PatchJson<R> {
-    /// From an evaluator record.
-    pub fn new(p: &PatchRecord<R>) -> Self {
+impl<'a, R: Scalar> PatchJson<'a, R> {
+    /// From an evaluator record (its control points are written from the
+    /// record itself, no copy is made).
+    pub fn new(p: &'a PatchRecord<R>) -> Self {
         use capdiv_mesh::tessellate::PatchGeometry;
-        fn by_rows<R: Copy, const K: usize>(pts: &[[Point3<R>; K]; K]) -> Vec<[R; 3]> {
-            (0..K)
-                .flat_map(|j| (0..K).map(move |i| pts[i][j].0))
-                .collect()
-        }
-        let (degree, points) = match &p.geometry {
-            PatchGeometry::Cubic(t) => (3, by_rows(&t.points)),
-            PatchGeometry::Quartic(t) => (4, by_rows(&t.points)),
+        let degree = match &p.geometry {
+            PatchGeometry::Cubic(_) => 3,
+            PatchGeometry::Quartic(_) => 4,
         };
         PatchJson {
             kind: p.kind.id(),
@@ -636,7 +633,7 @@ impl<R: Scalar> PatchJson<R> {
             face: p.face,
             corner: p.corner,
             domain: p.domain,
-            points,
+            points: ControlPoints(&p.geometry),
             uv: None,
         }
     }
@@ -645,6 +642,27 @@ impl<R: Scalar> PatchJson<R> {
     pub fn with_uv(mut self, uv: Option<&PatchUv>) -> Self {
         self.uv = uv.map(|u| u.corners);
         self
+    }
+}
+
+/// A patch's control points as printed: `(d+1)²` points, row `j` (along
+/// `v`) after row, `i` (along `u`) within a row.
+#[derive(Clone, Copy, Debug)]
+pub struct ControlPoints<'a, R>(pub &'a capdiv_mesh::tessellate::PatchGeometry<R>);
+
+impl<R: Copy + Serialize> Serialize for ControlPoints<'_, R> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use capdiv_mesh::tessellate::PatchGeometry;
+        fn by_rows<R: Copy + Serialize, S: serde::Serializer, const K: usize>(
+            pts: &[[Point3<R>; K]; K],
+            serializer: S,
+        ) -> Result<S::Ok, S::Error> {
+            serializer.collect_seq((0..K).flat_map(|j| (0..K).map(move |i| pts[i][j].0)))
+        }
+        match self.0 {
+            PatchGeometry::Cubic(t) => by_rows(&t.points, serializer),
+            PatchGeometry::Quartic(t) => by_rows(&t.points, serializer),
+        }
     }
 }
 

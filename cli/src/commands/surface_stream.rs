@@ -225,7 +225,7 @@ struct JsonStream<'a, R, W> {
     /// The first allocation refused (the caps' list, or the indentation).
     refused: Option<OutOfMemory>,
     /// One patch's compact text, and its indented text.
-    line: Vec<u8>,
+    line: TryBytes,
     indent: Option<(Indent, Vec<u8>)>,
 }
 
@@ -258,15 +258,18 @@ impl<R: crate::Scalar, W: Write> SurfaceSink<R> for JsonStream<'_, R, W> {
         }
         let mut line = std::mem::take(&mut self.line);
         line.clear();
-        line.extend_from_slice(if self.patches == 0 {
+        // Cannot fail but for the buffer: plain numbers and strings.
+        let _ = line.write_all(if self.patches == 0 {
             b"{\"patches\":["
         } else {
             b","
         });
-        // Cannot fail: plain numbers and strings.
         let _ = serde_json::to_writer(&mut line, &PatchJson::new(p));
         self.patches += 1;
-        self.write(&line);
+        match line.refused() {
+            Some(e) => self.refused = Some(e),
+            None => self.write(line.as_bytes()),
+        }
         self.line = line;
     }
     fn cap(&mut self, c: &CapRecord<R>) {
@@ -295,7 +298,7 @@ pub fn json<R: crate::Scalar>(
         caps: Vec::new(),
         error: None,
         refused: None,
-        line: Vec::new(),
+        line: TryBytes::default(),
         indent: args.pretty.then(|| (Indent::default(), Vec::new())),
     };
     let mut opts = options(args, tables);
