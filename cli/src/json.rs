@@ -50,6 +50,15 @@ impl TryBytes {
         })
     }
 
+    /// Room for `additional` more bytes, or the refusal as an I/O error.
+    #[inline(never)]
+    fn grow(&mut self, additional: usize) -> std::io::Result<()> {
+        mem::reserve(&mut self.bytes, additional).map_err(|e| {
+            self.refused.get_or_insert(e);
+            std::io::Error::new(std::io::ErrorKind::OutOfMemory, e.message())
+        })
+    }
+
     /// The bytes written so far.
     pub fn as_bytes(&self) -> &[u8] {
         &self.bytes
@@ -75,16 +84,17 @@ impl TryBytes {
 }
 
 impl std::io::Write for TryBytes {
+    #[inline]
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        if let Err(e) = mem::reserve(&mut self.bytes, buf.len()) {
-            self.refused.get_or_insert(e);
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::OutOfMemory,
-                e.message(),
-            ));
+        if self.bytes.capacity() - self.bytes.len() < buf.len() {
+            self.grow(buf.len())?;
         }
         self.bytes.extend_from_slice(buf);
         Ok(buf.len())
+    }
+    #[inline]
+    fn write_all(&mut self, buf: &[u8]) -> std::io::Result<()> {
+        self.write(buf).map(|_| ())
     }
     fn flush(&mut self) -> std::io::Result<()> {
         Ok(())
@@ -123,54 +133,67 @@ pub struct Indent {
     inline: Vec<bool>,
 }
 
-/// Where [`Indent`] writes: a buffer, or a count of its bytes.
-trait Text {
-    fn byte(&mut self, b: u8);
-    fn bytes(&mut self, s: &[u8]);
-    fn newline(&mut self, depth: usize);
+/// Where [`Indent`] writes: a buffer that grows fallibly (doubling, as a
+/// `Vec` does); after a refusal, kept in `refused`, nothing more is
+/// written.
+struct Text<'a> {
+    out: &'a mut Vec<u8>,
+    refused: Option<OutOfMemory>,
 }
 
-impl Text for Vec<u8> {
+impl Text<'_> {
+    /// Whether there is room for `n` more bytes (made if needed).
+    #[inline]
+    fn room(&mut self, n: usize) -> bool {
+        if self.out.capacity() - self.out.len() >= n {
+            return true;
+        }
+        if self.refused.is_none() {
+            match mem::reserve(self.out, n) {
+                Ok(()) => return true,
+                Err(e) => self.refused = Some(e),
+            }
+        }
+        false
+    }
+    #[inline]
     fn byte(&mut self, b: u8) {
-        self.push(b);
+        if self.room(1) {
+            self.out.push(b);
+        }
     }
+    #[inline]
     fn bytes(&mut self, s: &[u8]) {
-        self.extend_from_slice(s);
+        if self.room(s.len()) {
+            self.out.extend_from_slice(s);
+        }
     }
     fn newline(&mut self, depth: usize) {
-        self.push(b'\n');
-        self.extend(std::iter::repeat_n(b' ', 2 * depth));
-    }
-}
-
-/// The length [`Indent`] would write.
-struct Count(usize);
-
-impl Text for Count {
-    fn byte(&mut self, _: u8) {
-        self.0 += 1;
-    }
-    fn bytes(&mut self, s: &[u8]) {
-        self.0 += s.len();
-    }
-    fn newline(&mut self, depth: usize) {
-        self.0 += 1 + 2 * depth;
+        if self.room(1 + 2 * depth) {
+            self.out.push(b'\n');
+            self.out.extend(std::iter::repeat_n(b' ', 2 * depth));
+        }
     }
 }
 
 impl Indent {
-    /// Appends `compact` re-indented to `out`. Its length is counted first
-    /// and reserved, so a refusal leaves `out` as it was and the nesting as
-    /// before the call.
+    /// Appends `compact` re-indented to `out`, or the error when `out`
+    /// cannot grow: `out` is then left as it was, and the nesting is lost
+    /// (the document cannot be continued).
     pub fn feed(&mut self, compact: &[u8], out: &mut Vec<u8>) -> Result<(), OutOfMemory> {
-        let mut count = Count(0);
-        self.clone().write(compact, &mut count);
-        mem::reserve(out, count.0)?;
-        self.write(compact, out);
-        Ok(())
+        let start = out.len();
+        let mut text = Text { out, refused: None };
+        self.write(compact, &mut text);
+        match text.refused {
+            None => Ok(()),
+            Some(e) => {
+                out.truncate(start);
+                Err(e)
+            }
+        }
     }
 
-    fn write(&mut self, compact: &[u8], out: &mut impl Text) {
+    fn write(&mut self, compact: &[u8], out: &mut Text<'_>) {
         let mut i = 0;
         while i < compact.len() {
             let c = compact[i];
