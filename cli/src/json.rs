@@ -1,16 +1,16 @@
 //! JSON text: serde_json's compact form, re-indented for `--pretty`
 //! ([`Indent`]), into buffers that grow fallibly ([`TryBytes`]), of lists
-//! serialised as they are made ([`Lazy`]) instead of collected first. A
-//! surface's patch list is the one output of the CLI as large as the
-//! output itself; with these it takes its text and nothing more, and a
-//! refused allocation is an [`OutOfMemory`] error.
+//! serialised as they are made ([`Lazy`]) instead of collected first. The
+//! patch lists of `surface` and `patches`, the largest JSON the CLI
+//! writes, take their text and nothing more this way, and a refused
+//! allocation is an [`OutOfMemory`] error.
 
 use capdiv_mesh::{mem, OutOfMemory};
 use serde::{Serialize, Serializer};
 
 /// Serialises `value` as JSON, compact or pretty, with a final newline
-/// (aborting, as a `Vec` does, when the text cannot be allocated; for
-/// outputs whose size the input does not set).
+/// (aborting, as a `Vec` does, when the text cannot be allocated: for
+/// outputs of bounded size, a pole's jet, a spectrum, a summary).
 pub fn to_json<T: Serialize>(value: &T, pretty: bool) -> Vec<u8> {
     mem::or_abort(try_to_json(value, pretty))
 }
