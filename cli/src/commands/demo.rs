@@ -16,7 +16,7 @@
 //! Each file is written atomically; the summary is printed once all samples
 //! have succeeded.
 
-use super::patches::{collect, collect_eg, png_bytes};
+use super::patches::{collect, collect_eg, png_bytes, PatchSet};
 use super::pole::pole;
 use super::surface::WELD_F64;
 use super::Outcome;
@@ -27,7 +27,8 @@ use crate::input::EgInput;
 use crate::json::to_json;
 use crate::output::{write_path, Sink};
 use crate::samples::{demo_samples, eg_samples, EgSample, Sample};
-use capdiv::FirstStep;
+use capdiv::{FirstStep, TensorPatch};
+use capdiv_mesh::tessellate::PatchGeometry;
 use capdiv_mesh::{samples, MeshInput};
 use std::fmt::Write;
 use std::path::Path;
@@ -122,6 +123,38 @@ pub fn run(args: &DemoArgs) -> Result<Outcome, CliError> {
     Ok(Outcome::new(text.into_bytes(), Sink::Stdout))
 }
 
+/// A sample's patches as the demo writes them.
+struct Drawn {
+    /// The welded OBJ.
+    obj: String,
+    /// The PNG preview, patch boundaries drawn.
+    png: Vec<u8>,
+    /// The OBJ's vertices and faces.
+    counts: (usize, usize),
+}
+
+/// [`Drawn`] of a sample's patches.
+fn obj_and_png<const K: usize>(
+    set: &PatchSet<f64, K>,
+    name: &str,
+    title: &str,
+) -> Result<Drawn, CliError>
+where
+    TensorPatch<f64, K>: Into<PatchGeometry<f64>>,
+{
+    let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
+    let obj = set
+        .to_obj(&mesh, DEMO_GRID, WELD_F64, title)
+        .map_err(CliError::out_of_memory_in(name))?;
+    let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
+    let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
+    Ok(Drawn {
+        obj,
+        png,
+        counts: (mesh.positions.len(), mesh.faces.len()),
+    })
+}
+
 fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let start = Instant::now();
     let name = sample.name;
@@ -130,22 +163,9 @@ fn one(sample: Sample, dir: &Path, text: &mut String) -> Result<(), CliError> {
     let jet = pole::<f64>(name, input)?;
     let set = collect::<f64>(name, input, sample.depth, FirstStep::Uniform)?;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
-    let obj = set
-        .to_obj(&mesh, DEMO_GRID, WELD_F64, &title)
-        .map_err(CliError::out_of_memory_in(name))?;
-    let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
-    let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
+    let Drawn { obj, png, counts } = obj_and_png(&set, name, &title)?;
     let compute = start.elapsed();
-    let files = write_files(
-        dir,
-        name,
-        &obj,
-        &png,
-        input,
-        "polar",
-        (mesh.positions.len(), mesh.faces.len()),
-    )?;
+    let files = write_files(dir, name, &obj, &png, input, "polar", counts)?;
     let total = start.elapsed();
 
     let a = sample.analytic;
@@ -201,22 +221,9 @@ fn one_eg(sample: EgSample, dir: &Path, text: &mut String) -> Result<(), CliErro
     let set = collect_eg::<f64>(name, &input, sample.depth, None)?;
     let c0 = super::eg::dnet::<f64>(name, &input)?.c0().0;
     let title = format!("capdiv demo: {name}, {}", sample.surface);
-    let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
-    let obj = set
-        .to_obj(&mesh, DEMO_GRID, WELD_F64, &title)
-        .map_err(CliError::out_of_memory_in(name))?;
-    let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
-    let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
+    let Drawn { obj, png, counts } = obj_and_png(&set, name, &title)?;
     let compute = start.elapsed();
-    let files = write_files(
-        dir,
-        name,
-        &obj,
-        &png,
-        &sample.input,
-        "cnet",
-        (mesh.positions.len(), mesh.faces.len()),
-    )?;
+    let files = write_files(dir, name, &obj, &png, &sample.input, "cnet", counts)?;
     let total = start.elapsed();
 
     // Ring M's innermost surface points: the corner (u, v) = (0, 0) of each
