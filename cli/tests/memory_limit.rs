@@ -36,15 +36,23 @@ fn torus_vertices(n: usize) -> String {
 /// A torus of `n × n` quads, each split into two triangles, as OBJ text.
 fn triangle_torus(n: usize) -> String {
     let mut text = torus_vertices(n);
-    let id = |i: usize, j: usize| (i % n) * n + (j % n) + 1;
+    let id = |i: usize, j: usize| ((i % n) * n + (j % n) + 1).to_string();
+    triangles(&mut text, n, id);
+    text
+}
+
+/// The `f` lines of the torus' `n × n` quads, each split into two
+/// triangles `(a, b, c)`, `(a, c, d)`; `corner(i, j)` is the text of the
+/// corner at grid point `(i, j)` (`i`, `j` up to `n`).
+fn triangles(text: &mut String, n: usize, corner: impl Fn(usize, usize) -> String) {
     for i in 0..n {
         for j in 0..n {
-            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            let [a, b, c, d] =
+                [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(i, j)| corner(i, j));
             let _ = writeln!(text, "f {a} {b} {c}");
             let _ = writeln!(text, "f {a} {c} {d}");
         }
     }
-    text
 }
 
 #[test]
@@ -287,15 +295,7 @@ fn textured_triangle_torus(n: usize) -> String {
     }
     let v = |i: usize, j: usize| (i % n) * n + (j % n) + 1;
     let t = |i: usize, j: usize| i * (n + 1) + j + 1;
-    for i in 0..n {
-        for j in 0..n {
-            let c =
-                [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(a, b)| (v(a, b), t(a, b)));
-            for [p, q, r] in [[c[0], c[1], c[2]], [c[0], c[2], c[3]]] {
-                let _ = writeln!(text, "f {}/{} {}/{} {}/{}", p.0, p.1, q.0, q.1, r.0, r.1);
-            }
-        }
-    }
+    triangles(&mut text, n, |i, j| format!("{}/{}", v(i, j), t(i, j)));
     text
 }
 
