@@ -143,9 +143,7 @@ where
     TensorPatch<f64, K>: Into<PatchGeometry<f64>>,
 {
     let mesh = set.tessellate(name, DEMO_GRID, WELD_F64)?;
-    let obj = set
-        .to_obj(&mesh, DEMO_GRID, WELD_F64, title)
-        .map_err(CliError::out_of_memory_in(name))?;
+    let obj = set.to_obj(name, &mesh, DEMO_GRID, WELD_F64, title)?;
     let drawn = set.tessellate_with_parameters(name, DEMO_GRID, WELD_F64)?;
     let png = png_bytes(name, &drawn, Some(&drawn.uvs), Up::Z)?;
     Ok(Drawn {

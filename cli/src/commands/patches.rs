@@ -168,14 +168,16 @@ where
             .map_err(CliError::out_of_memory_in(name))
     }
 
-    /// OBJ text of the welded tessellation `tess`.
+    /// OBJ text of the welded tessellation `tess`; an allocation refused
+    /// is the out-of-memory error of input `name`.
     pub fn to_obj(
         &self,
+        name: &str,
         tess: &Tessellation<R>,
         grid: usize,
         factor: f64,
         title: &str,
-    ) -> Result<String, capdiv_mesh::OutOfMemory> {
+    ) -> Result<String, CliError> {
         let mut header = obj_header(title, self.describe(), grid, factor, self.size).to_vec();
         let triangles = tess.faces.iter().filter(|f| f.corners().len() == 3).count();
         header.push(counts_line(
@@ -183,7 +185,7 @@ where
             triangles,
             tess.faces.len() - triangles,
         ));
-        try_write_obj(tess, &header)
+        try_write_obj(tess, &header).map_err(CliError::out_of_memory_in(name))
     }
 }
 
@@ -346,9 +348,7 @@ where
         PatchFormat::Obj => {
             let title = format!("capdiv patches --depth {} {name}", args.depth);
             let tess = set.tessellate(name, grid, factor)?;
-            set.to_obj(&tess, grid, factor, &title)
-                .map_err(CliError::out_of_memory_in(name))?
-                .into_bytes()
+            set.to_obj(name, &tess, grid, factor, &title)?.into_bytes()
         }
         PatchFormat::Png => {
             let tess = set.tessellate_with_parameters(name, grid, factor)?;
