@@ -54,6 +54,7 @@ use crate::mem::{self, OutOfMemory};
 use crate::stencil::{Primvar, StencilTable};
 use crate::tagged_step::tagged_step;
 use crate::topology::{check_sizes_and_positions, Topology, NONE};
+use alloc::borrow::Cow;
 use alloc::boxed::Box;
 use alloc::collections::BTreeSet;
 use alloc::vec::Vec;
@@ -438,11 +439,12 @@ impl<'t> SurfacePlan<'t> {
             .map(Topology::num_faces)
             .or(tagged.as_ref().map(|b| b.level.num_faces()))
             .unwrap_or(0);
-        let mut charts: Vec<FaceChart> =
-            mem::collect((0..input_faces as u32).map(FaceChart::input))?;
+        // The input's faces are their own charts until a step refines them.
+        let mut charts = Charts::Input(input_faces);
         let mut steps = Vec::new();
         let mut needed = Vec::new();
-        let mut level_topo = topo.map(Topology::try_clone).transpose()?;
+        // The analysed level: the input's topology (borrowed) until a step.
+        let mut level_topo = topo.map(Cow::Borrowed);
         // Per vertex at the current level: has it been a C²PS pole (refined by
         // the step), and how often.
         let mut pole_steps: Vec<u32> = mem::filled(num_vertices, 0)?;
@@ -494,9 +496,10 @@ impl<'t> SurfacePlan<'t> {
                     .filter(|&v| !options.catmull_clark && is_fan(t, v))
                     .filter_map(|v| step_seed(t, v, clean)),
             )?;
+            let parents = charts.to_vec()?;
             let (refined, next_base) = match &tagged {
-                None => (try_global_step(t, &charts, &seeds)?, None),
-                Some(b) => match tagged_step(t, b, &charts, &seeds)? {
+                None => (try_global_step(t, &parents, &seeds)?, None),
+                Some(b) => match tagged_step(t, b, &parents, &seeds)? {
                     Some((r, next)) => (r, Some(next)),
                     None => break,
                 },
@@ -517,7 +520,7 @@ impl<'t> SurfacePlan<'t> {
                 new_pole_steps[p as usize] = pole_steps[seed.pole as usize] + 1;
             }
             let next = Topology::from_faces(refined.num_vertices, &refined.faces)?;
-            charts = refined.charts;
+            charts = Charts::Refined(refined.charts);
             steps.push(refined.stencils);
             pole_steps = new_pole_steps;
             pass = analyse(
@@ -531,14 +534,14 @@ impl<'t> SurfacePlan<'t> {
                 }
             }
             tagged = next_base;
-            level_topo = Some(next);
+            level_topo = Some(Cow::Owned(next));
         }
         if steps.is_empty() {
             needed = uncovered_list(&pass.uncovered, &charts, false)?;
         }
         let vertices = level_topo
             .as_ref()
-            .map_or(num_vertices, Topology::num_vertices);
+            .map_or(num_vertices, |t| t.num_vertices());
         let mut plan = SurfacePlan {
             input_vertices: num_vertices,
             input_faces,
@@ -597,7 +600,7 @@ impl<'t> SurfacePlan<'t> {
                     .iter()
                     .enumerate()
                     .filter(|(f, r)| r.is_some() && !base.level.hole[*f])
-                    .map(|(f, _)| (f as u32, charts[f])),
+                    .map(|(f, _)| (f as u32, charts.get(f))),
             )?;
             plan.push_adaptive(&base, &roots, &cap_face)?;
         }
@@ -651,7 +654,7 @@ impl<'t> SurfacePlan<'t> {
         &mut self,
         level_topo: &Topology,
         pass: &Pass,
-        charts: &[FaceChart],
+        charts: &Charts,
         pole_steps: &[u32],
         cap_face: &[bool],
     ) {
@@ -684,7 +687,7 @@ impl<'t> SurfacePlan<'t> {
             }
             self.regular.push(RegularPlan {
                 gather,
-                chart: charts[f],
+                chart: charts.get(f),
                 finer,
                 level: 0,
                 hole: 0,
@@ -700,7 +703,7 @@ impl<'t> SurfacePlan<'t> {
                 .sectors
                 .iter()
                 .map(|&(f, k)| {
-                    let ch = charts[f as usize];
+                    let ch = charts.get(f as usize);
                     FaceChart {
                         face: ch.face,
                         corner: ch.corner,
@@ -711,7 +714,7 @@ impl<'t> SurfacePlan<'t> {
             let (vertex, face) = match input_vertex(e.center) {
                 Some(v) => (Some(v), None),
                 // A face point: all its sectors lie in one input face.
-                None => (None, Some(charts[e.sectors[0].0 as usize].face)),
+                None => (None, Some(charts.get(e.sectors[0].0 as usize).face)),
             };
             self.extraordinary.push(ExtraordinaryCapPlan {
                 vertex,
@@ -843,13 +846,13 @@ impl<'t> SurfacePlan<'t> {
         }
     }
 
-    fn push_polar(&mut self, t: &Topology, c: &PolarConfig, charts: &[FaceChart], pre: u32) {
+    fn push_polar(&mut self, t: &Topology, c: &PolarConfig, charts: &Charts, pre: u32) {
         let n = c.links[0].len();
         // After refinement, start the columns at a spoke of the input pole
         // (where the input triangle changes), so that column groups of 2^pre
         // fill one input triangle each.
         let c = if pre > 0 {
-            let face = |j: usize| charts[c.triangles[j] as usize].face;
+            let face = |j: usize| charts.get(c.triangles[j] as usize).face;
             let shift = (0..n)
                 .find(|&j| face(j) != face((j + n - 1) % n))
                 .unwrap_or(0);
@@ -870,7 +873,7 @@ impl<'t> SurfacePlan<'t> {
                 .iter()
                 .zip(&c.quad_corner)
                 .map(|(&f, &k)| {
-                    let ch = charts[f as usize];
+                    let ch = charts.get(f as usize);
                     FaceChart {
                         face: ch.face,
                         corner: ch.corner,
@@ -895,7 +898,7 @@ impl<'t> SurfacePlan<'t> {
             triangles: c
                 .triangles
                 .iter()
-                .map(|&f| charts[f as usize].face)
+                .map(|&f| charts.get(f as usize).face)
                 .collect(),
             quads,
         });
@@ -932,18 +935,52 @@ impl<'t> SurfacePlan<'t> {
     }
 }
 
+/// Where each face of the analysed level lies in the input: the input's
+/// faces themselves until a step refines them (so that a mesh no step
+/// refines, the common case, holds no chart per face), then the steps'
+/// charts.
+enum Charts {
+    /// The input's faces (this many), each in its own square.
+    Input(usize),
+    /// Per face of the refined level.
+    Refined(Vec<FaceChart>),
+}
+
+impl Charts {
+    /// Face `f`'s chart.
+    fn get(&self, f: usize) -> FaceChart {
+        match self {
+            Charts::Input(_) => FaceChart::input(f as u32),
+            Charts::Refined(c) => c[f],
+        }
+    }
+
+    /// Faces of the level.
+    fn len(&self) -> usize {
+        match self {
+            Charts::Input(n) => *n,
+            Charts::Refined(c) => c.len(),
+        }
+    }
+
+    /// The charts as a list (a step's parents), reserved fallibly.
+    fn to_vec(&self) -> Result<Vec<FaceChart>, OutOfMemory> {
+        mem::collect((0..self.len()).map(|f| self.get(f)))
+    }
+}
+
 /// Uncovered faces as input faces (each once, first reason), `fixable_only`
 /// keeping those refinement can cure.
 fn uncovered_list(
     reasons: &[Option<Reason>],
-    charts: &[FaceChart],
+    charts: &Charts,
     fixable_only: bool,
 ) -> Result<Vec<UncoveredFace>, OutOfMemory> {
     let mut out: Vec<UncoveredFace> = mem::collect(
         reasons
             .iter()
             .enumerate()
-            .filter_map(|(f, r)| r.map(|r| (charts[f].face, r)))
+            .filter_map(|(f, r)| r.map(|r| (charts.get(f).face, r)))
             .filter(|(_, r)| !fixable_only || r.refinement_helps())
             .map(|(face, reason)| UncoveredFace { face, reason }),
     )?;
