@@ -320,14 +320,17 @@ fn face_ranks(topo: Option<&Topology>, faces: usize) -> Result<Vec<u32>, MeshErr
 
 /// A regular face's control grid as the analysis found it: vertices only
 /// (an interior face, the common case, kept small), or with phantom points.
-enum RegularGrid {
-    Vertices([[u32; 4]; 4]),
-    Phantoms(Box<[[GridPoint; 4]; 4]>),
-}
-
 /// One analysis pass on one level.
 struct Pass {
-    regular: Vec<(u32, RegularGrid, u8)>,
+    /// The regular faces' patches, in face order: each with its face (of
+    /// this level) in `chart.face` and, where its grid is made of the
+    /// level's vertices, its `gather`; the plan fills in the rest
+    /// ([`SurfacePlan::push_caps_and_regular`]) and keeps the list, so
+    /// that the patches are not written twice.
+    regular: Vec<RegularPlan>,
+    /// The grids with phantom points (at a boundary), by the index of their
+    /// patch in `regular`.
+    phantom_grids: Vec<(u32, Box<[[GridPoint; 4]; 4]>)>,
     polar: Vec<PolarConfig>,
     extraordinary: Vec<(ExtraordinaryConfig, Scheme, Option<usize>)>,
     /// Per face of the level: the reason it is uncovered, if it is.
@@ -453,6 +456,7 @@ impl<'t> SurfacePlan<'t> {
             Some(t) => analyse(t, &options, clean)?,
             None => Pass {
                 regular: Vec::new(),
+                phantom_grids: Vec::new(),
                 polar: Vec::new(),
                 extraordinary: Vec::new(),
                 uncovered: mem::filled(input_faces, Some(Reason::Feature))?,
@@ -577,10 +581,9 @@ impl<'t> SurfacePlan<'t> {
             c
         };
         if let Some(level_topo) = &level_topo {
-            mem::reserve(&mut plan.regular, pass.regular.len())?;
             mem::reserve(&mut plan.polar, pass.polar.len())?;
             mem::reserve(&mut plan.extraordinary, pass.extraordinary.len())?;
-            plan.push_caps_and_regular(level_topo, &pass, &charts, &pole_steps, &cap_face);
+            plan.push_caps_and_regular(level_topo, &mut pass, &charts, &pole_steps, &cap_face);
         }
         // Patches and caps of the analysed level (the adaptive refinement's
         // come after them).
@@ -653,24 +656,24 @@ impl<'t> SurfacePlan<'t> {
     fn push_caps_and_regular(
         &mut self,
         level_topo: &Topology,
-        pass: &Pass,
+        pass: &mut Pass,
         charts: &Charts,
         pole_steps: &[u32],
         cap_face: &[bool],
     ) {
         let input_vertices = self.input_vertices as u32;
         let input_vertex = |v: u32| (v < input_vertices).then_some(v);
-        for (f, grid, _) in &pass.regular {
-            let f = *f as usize;
-            let mut gather = [0u32; 16];
-            for i in 0..4 {
-                for j in 0..4 {
-                    gather[4 * i + j] = match grid {
-                        RegularGrid::Vertices(g) => g[i][j],
-                        RegularGrid::Phantoms(g) => self.point(&g[i][j]),
-                    };
-                }
+        // The pass's patches become the plan's (this runs on a new plan).
+        debug_assert!(self.regular.is_empty());
+        self.regular = core::mem::take(&mut pass.regular);
+        for (i, grid) in &pass.phantom_grids {
+            for (k, p) in grid.iter().flatten().enumerate() {
+                let point = self.point(p);
+                self.regular[*i as usize].gather[k] = point;
             }
+        }
+        for r in &mut self.regular {
+            let f = r.chart.face as usize;
             let (mut finer, mut boundary) = (0u8, 0u8);
             for k in 0..4 {
                 let h = level_topo.face_half_edge(f, k);
@@ -685,15 +688,9 @@ impl<'t> SurfacePlan<'t> {
                     boundary |= 1 << (4 + k);
                 }
             }
-            self.regular.push(RegularPlan {
-                gather,
-                chart: charts.get(f),
-                finer,
-                level: 0,
-                hole: 0,
-                hole_point: 0,
-                boundary,
-            });
+            r.chart = charts.get(f);
+            r.finer = finer;
+            r.boundary = boundary;
         }
         for c in &pass.polar {
             self.push_polar(level_topo, c, charts, pole_steps[c.pole as usize]);
@@ -1043,6 +1040,7 @@ fn analyse(
     let mut pass = Pass {
         // At most one regular patch per face.
         regular: mem::with_capacity(nf)?,
+        phantom_grids: Vec::new(),
         polar: Vec::new(),
         extraordinary: Vec::new(),
         uncovered: Vec::new(),
@@ -1132,12 +1130,29 @@ fn analyse(
             owner[f] = Some(Reason::Feature);
             continue;
         }
-        let grid = match interior_face_grid(t, f) {
-            Some(g) => Some(RegularGrid::Vertices(g)),
-            None => face_grid(t, f).map(|g| RegularGrid::Phantoms(Box::new(g))),
+        // A grid of phantom points gets its gather in the plan (which
+        // makes the points).
+        let gather = match interior_face_grid(t, f) {
+            Some(g) => Some(core::array::from_fn(|k| g[k / 4][k % 4])),
+            None => match face_grid(t, f) {
+                Some(g) => {
+                    let at = pass.regular.len() as u32;
+                    mem::push(&mut pass.phantom_grids, (at, Box::new(g)))?;
+                    Some([NONE; 16])
+                }
+                None => None,
+            },
         };
-        if let Some(grid) = grid {
-            pass.regular.push((f as u32, grid, 0));
+        if let Some(gather) = gather {
+            pass.regular.push(RegularPlan {
+                gather,
+                chart: FaceChart::input(f as u32),
+                finer: 0,
+                level: 0,
+                hole: 0,
+                hole_point: 0,
+                boundary: 0,
+            });
             covered[f] = true;
             continue;
         }
