@@ -182,8 +182,15 @@ impl Topology {
         }
         // Destinations looked up once: the scans below read each several times.
         let dest: Vec<u32> = mem::collect((0..nh as u32).map(|h| self.dest(h)))?;
-        // In face order, so the error names the first offending face.
+        // In face order, so the error names the first offending face. An
+        // edge is checked from its first half-edge: its twin's check would
+        // count the same half-edges (its `same` is this one's `opposite`
+        // less itself, and the other way round), so it would pass too, and
+        // the twin is linked here.
         for h in 0..nh {
+            if self.twin[h] != NONE {
+                continue;
+            }
             let v = self.corner_vertex[h] as usize;
             let w = dest[h] as usize;
             // Other half-edges v→w (same direction) and w→v (opposite).
@@ -192,9 +199,10 @@ impl Topology {
                 .filter(|&&g| g != h as u32 && dest[g as usize] as usize == w)
                 .count();
             let mut opposite = 0;
+            let mut twin = NONE;
             for &g in &out[start[w] as usize..start[w + 1] as usize] {
                 if dest[g as usize] as usize == v {
-                    self.twin[h] = g;
+                    twin = g;
                     opposite += 1;
                 }
             }
@@ -206,6 +214,10 @@ impl Topology {
                     face: self.second_face_on(&out, &start, v, w),
                     edge: [v, w],
                 });
+            }
+            if twin != NONE {
+                self.twin[h] = twin;
+                self.twin[twin as usize] = h as u32;
             }
         }
         Ok(())
