@@ -318,8 +318,6 @@ fn face_ranks(topo: Option<&Topology>, faces: usize) -> Result<Vec<u32>, MeshErr
     Ok(rank)
 }
 
-/// A regular face's control grid as the analysis found it: vertices only
-/// (an interior face, the common case, kept small), or with phantom points.
 /// One analysis pass on one level.
 struct Pass {
     /// The regular faces' patches, in face order: each with its face (of
@@ -663,8 +661,8 @@ impl<'t> SurfacePlan<'t> {
     ) {
         let input_vertices = self.input_vertices as u32;
         let input_vertex = |v: u32| (v < input_vertices).then_some(v);
-        // The pass's patches become the plan's (this runs on a new plan).
-        debug_assert!(self.regular.is_empty());
+        // The pass's patches become the plan's: the analysed level's come
+        // first (this runs on a new plan, before the adaptive refinement's).
         self.regular = core::mem::take(&mut pass.regular);
         for (i, grid) in &pass.phantom_grids {
             for (k, p) in grid.iter().flatten().enumerate() {
