@@ -754,12 +754,26 @@ impl<'t> SurfacePlan<'t> {
         mem::reserve(&mut self.regular, a.patches.len())?;
         self.phantoms.append(&a.points.rows);
         let edges = &a.edges;
+        // Across an edge of the analysed level the refinement is finer
+        // only where the face beyond it was refined: both ends are then
+        // corners of a refined face (a cheap test that spares most edges
+        // the refinement's look-ups).
+        let mut refined_corner = mem::filled(self.vertices, false)?;
+        for &(f, _) in roots {
+            for &v in base.level.face(f as usize) {
+                if let Some(t) = refined_corner.get_mut(base.level.point[v as usize] as usize) {
+                    *t = true;
+                }
+            }
+        }
+        let refined = |p: u32| refined_corner.get(p as usize).copied().unwrap_or(true);
         // Level-0 patches: the analysed face's corners are its grid's inner
         // points.
         for r in self.regular.iter_mut().filter(|r| r.level == 0) {
             let c = [r.gather[5], r.gather[9], r.gather[10], r.gather[6]];
             for k in 0..4 {
-                if adaptive::finer_across(&a.points, edges, c[k], c[(k + 1) % 4]) {
+                let (x, y) = (c[k], c[(k + 1) % 4]);
+                if refined(x) && refined(y) && adaptive::finer_across(&a.points, edges, x, y) {
                     r.finer |= 1 << k;
                 }
             }
