@@ -113,16 +113,18 @@ impl Level {
             face_start.push(corner_vertex.len() as u32);
         }
         let mut corner_edge = mem::filled(nc, 0u32)?;
-        let mut edge_vertices: Vec<[u32; 2]> = Vec::new();
-        let mut nonmanifold: Vec<bool> = Vec::new();
-        // Per edge: its face count and last face.
-        let mut face_count: Vec<u32> = Vec::new();
-        let mut last_face: Vec<u32> = Vec::new();
+        // Per edge (a closed mesh has an edge per two corners; an open one
+        // grows the lists past that): its vertices, non-manifold tag, face
+        // count, last face and instance.
+        let edges = nc / 2;
+        let mut edge_vertices: Vec<[u32; 2]> = mem::with_capacity(edges)?;
+        let mut nonmanifold: Vec<bool> = mem::with_capacity(edges)?;
+        let mut face_count: Vec<u32> = mem::with_capacity(edges)?;
+        let mut last_face: Vec<u32> = mem::with_capacity(edges)?;
+        let mut instance: Vec<u32> = mem::with_capacity(edges)?;
         // The first edge made between two vertices, and how many.
-        // (A closed mesh has an edge per two corners.)
         let mut first: HashMap<(u32, u32), (u32, u32)> = HashMap::new();
-        mem::reserve_map(&mut first, nc / 2)?;
-        let mut instance: Vec<u32> = Vec::new();
+        mem::reserve_map(&mut first, edges)?;
         for (f, vs) in faces.iter().enumerate() {
             let f = f as u32;
             let base = face_start[f as usize] as usize;
