@@ -69,20 +69,6 @@ pub struct Topology {
 }
 
 impl Topology {
-    /// A copy, its buffers reserved fallibly (`Clone` aborts on a refused
-    /// allocation).
-    pub fn try_clone(&self) -> Result<Self, mem::OutOfMemory> {
-        Ok(Topology {
-            face_start: mem::to_vec(&self.face_start)?,
-            corner_vertex: mem::to_vec(&self.corner_vertex)?,
-            corner_face: mem::to_vec(&self.corner_face)?,
-            twin: mem::to_vec(&self.twin)?,
-            vertex_start: mem::to_vec(&self.vertex_start)?,
-            vertex_faces: mem::to_vec(&self.vertex_faces)?,
-            vertex_boundary: mem::to_vec(&self.vertex_boundary)?,
-        })
-    }
-
     /// Validates `mesh` and builds its half-edges. See the module doc for the
     /// checks and their order.
     ///
